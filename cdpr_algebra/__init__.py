@@ -1,0 +1,11 @@
+"""cdpr_algebra: every equilibrium of underconstrained cable-driven parallel robots.
+
+Data flow: robot file -> :class:`Robot` -> problem (IGP / DGP) -> solver -> filter -> result -> CLI.
+"""
+
+from .errors import CdprInputError
+from .robot import Robot, load_robot
+from .pose import Pose
+
+__all__ = ["CdprInputError", "Robot", "load_robot", "Pose"]
+__version__ = "0.1.0"

@@ -1,0 +1,163 @@
+"""Immutable result records of the IGP solvers, each with ``to_dict()`` for JSON."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .pose import angles_from_matrix, euler_parameters_from_matrix, matrix_from_euler_parameters
+from .stability import hessian_class, reduced_hessian
+from .statics import equilibrium_tensions
+
+
+def _jsonable(v):
+    """Floats as floats, complex as [re, im] pairs, arrays as nested lists."""
+    if isinstance(v, np.ndarray):
+        return [_jsonable(x) for x in v]
+    if isinstance(v, (list, tuple)):
+        return [_jsonable(x) for x in v]
+    if isinstance(v, (complex, np.complexfloating)):
+        return float(v.real) if v.imag == 0 else [float(v.real), float(v.imag)]
+    if isinstance(v, (np.floating, float)):
+        return float(v)
+    if isinstance(v, (np.integer,)):
+        return int(v)
+    if isinstance(v, np.bool_):
+        return bool(v)
+    return v
+
+
+@dataclass(frozen=True)
+class IGPSolution:
+    """One equilibrium configuration of a 3-cable robot (seed 004 Tables 1-4 row).
+
+    ``position`` is the platform-frame origin, ``com_position`` is G. For a complex (non-real) solution the
+    arrays are complex, ``real`` is False, and ``hessian``/``stable`` are None (definiteness is undefined).
+    ``residual`` is the relative residual of force and moment balance at the reported pose.
+    """
+
+    position: np.ndarray
+    com_position: np.ndarray
+    rotation: np.ndarray
+    euler_parameters: np.ndarray  # (e0, e1, e2, e3) as found (e0 = 1: Rodrigues, e0 = 0: half-turn)
+    lengths: np.ndarray
+    tensions: np.ndarray
+    hessian: str | None
+    real: bool
+    residual: float
+    tension_tolerance: float = 0.0
+
+    @property
+    def angles(self) -> np.ndarray | None:
+        return angles_from_matrix(self.rotation.real) if self.real else None
+
+    @property
+    def admissible(self) -> bool:
+        """Real, with every tension >= 0 (within ``tension_tolerance``)."""
+        return bool(self.real and np.all(np.real(self.tensions) >= -self.tension_tolerance))
+
+    @property
+    def stable(self) -> bool | None:
+        return None if self.hessian is None else self.hessian == ">"
+
+    def to_dict(self) -> dict:
+        return {
+            "position": _jsonable(self.position),
+            "com_position": _jsonable(self.com_position),
+            "rotation": _jsonable(self.rotation),
+            "angles": None if self.angles is None else _jsonable(self.angles),
+            "euler_parameters": _jsonable(self.euler_parameters),
+            "lengths": _jsonable(self.lengths),
+            "tensions": _jsonable(self.tensions),
+            "admissible": self.admissible,
+            "hessian": self.hessian,
+            "stable": self.stable,
+            "real": self.real,
+            "residual": self.residual,
+        }
+
+
+def make_solution(robot, com_position, rotation, euler_parameters=None, real_tol: float = 1e-9) -> IGPSolution:
+    """Complete an IGP root (G and R known) with lengths, tensions, residual and H_r class.
+
+    Works with complex G and R (then ``real`` is False unless the imaginary parts are negligible).
+    """
+    G = np.asarray(com_position)
+    R = np.asarray(rotation)
+    is_real = bool(
+        np.abs(np.imag(G)).max() <= real_tol * max(1.0, np.abs(G).max())
+        and np.abs(np.imag(R)).max() <= real_tol
+    )
+    if is_real:
+        G = np.real(G).astype(float)
+        R = np.real(R).astype(float)
+    if euler_parameters is None:
+        euler_parameters = euler_parameters_from_matrix(np.real(R))
+    rl = R @ (robot.platform - robot.com).T  # r_i = B_i - G
+    B = G + rl.T
+    L = robot.size
+    eq = equilibrium_tensions(robot.base, B, G, robot.load, robot.load_direction, length_scale=L)
+    hess = None
+    if is_real:
+        Hr = reduced_hessian(robot.base, B, G, eq.tensions, eq.lengths, length_scale=L)
+        scale = float(np.sum(np.abs(eq.tensions) / eq.lengths) + robot.load / L)
+        hess = hessian_class(Hr, scale)
+    position = G - R @ robot.com
+    return IGPSolution(
+        position=position,
+        com_position=G,
+        rotation=R,
+        euler_parameters=np.asarray(euler_parameters),
+        lengths=eq.lengths,
+        tensions=eq.tensions,
+        hessian=hess,
+        real=is_real,
+        residual=eq.residual,
+        tension_tolerance=1e-9 * robot.load,
+    )
+
+
+@dataclass(frozen=True)
+class SolutionSet:
+    """A positive-dimensional or empty solution set of the IGP with assigned orientation (seed 004 App. A).
+
+    ``kind`` is one of 'vertical_line', 'cylinder_curve', 'planar_conic', 'crane', 'empty'; ``description``
+    says it in words; ``data`` holds its parameters (e.g. the (x, y) of a vertical line of G, the conic's
+    coefficients), all JSON-ready.
+    """
+
+    kind: str
+    description: str
+    data: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        return {"kind": self.kind, "description": self.description, **{k: _jsonable(v) for k, v in self.data.items()}}
+
+
+@dataclass(frozen=True)
+class IGPResult:
+    """All solutions of one IGP call; ``solution_set`` is set when the answer is not a finite point set."""
+
+    problem: str  # 'orientation' or 'position'
+    solutions: tuple
+    solution_set: SolutionSet | None = None
+    seconds: float = 0.0
+    message: str = ""
+
+    @property
+    def real_solutions(self) -> tuple:
+        return tuple(s for s in self.solutions if s.real)
+
+    def to_dict(self, include_complex: bool = False) -> dict:
+        sols = self.solutions if include_complex else self.real_solutions
+        return {
+            "problem": self.problem,
+            "solutions": [s.to_dict() for s in sols],
+            "count": {"total": len(self.solutions), "real": len(self.real_solutions),
+                      "admissible": sum(s.admissible for s in self.solutions),
+                      "stable": sum(bool(s.stable) and s.admissible for s in self.solutions)},
+            "solution_set": None if self.solution_set is None else self.solution_set.to_dict(),
+            "seconds": self.seconds,
+            "message": self.message,
+        }
