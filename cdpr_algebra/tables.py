@@ -1,0 +1,53 @@
+"""Readable text tables of results, laid out like the papers' tables."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def _fmt(v, digits=3) -> str:
+    if isinstance(v, (complex, np.complexfloating)) and v.imag != 0:
+        return f"{v.real:+.{digits}f}{v.imag:+.{digits}f}i"
+    return f"{float(np.real(v)):+.{digits}f}"
+
+
+def _vec(vs, digits=3) -> str:
+    return "(" + ", ".join(_fmt(v, digits) for v in vs) + ")"
+
+
+def format_table(headers: list[str], rows: list[list[str]]) -> str:
+    widths = [max(len(h), *(len(r[i]) for r in rows)) if rows else len(h) for i, h in enumerate(headers)]
+    line = "  ".join(h.ljust(w) for h, w in zip(headers, widths))
+    out = [line, "  ".join("-" * w for w in widths)]
+    out += ["  ".join(c.ljust(w) for c, w in zip(r, widths)) for r in rows]
+    return "\n".join(out)
+
+
+def igp_table(result, include_complex: bool = False) -> str:
+    """Seed 004 Tables 1-4 layout: one row per solution."""
+    sols = result.solutions if include_complex else result.real_solutions
+    lines = []
+    if result.problem == "orientation":
+        headers = ["#", "G (x, y, z)", "(rho_1, rho_2, rho_3)", "(tau_1, tau_2, tau_3)", "H_r", "admissible"]
+        rows = [[str(i + 1), _vec(s.com_position, 4), _vec(s.lengths, 2), _vec(s.tensions, 2), s.hessian or "-",
+                 "yes" if s.admissible else "no"] for i, s in enumerate(sols)]
+    else:
+        headers = ["#", "(e0, e1, e2, e3)", "(rho_1, rho_2, rho_3)", "(tau_1, tau_2, tau_3)", "H_r", "admissible"]
+        rows = [[str(i + 1), _vec(s.euler_parameters, 10), _vec(s.lengths, 2), _vec(s.tensions, 2), s.hessian or "-",
+                 "yes" if s.admissible else "no"] for i, s in enumerate(sols)]
+    if rows:
+        lines.append(format_table(headers, rows))
+    if result.solution_set is not None:
+        lines.append(f"solution set: {result.solution_set.kind}: {result.solution_set.description}")
+        for k, v in result.solution_set.data.items():
+            if k != "work_frame":
+                lines.append(f"  {k}: {v}")
+    n_real = len(result.real_solutions)
+    summary = (f"{len(result.solutions)} solution(s), {n_real} real, "
+               f"{sum(s.admissible for s in result.solutions)} admissible (tensions >= 0), "
+               f"{sum(bool(s.stable) and s.admissible for s in result.solutions)} admissible and stable; "
+               f"{result.seconds * 1e3:.1f} ms")
+    if result.message:
+        summary += f"; {result.message}"
+    lines.append(summary)
+    return "\n".join(lines)
