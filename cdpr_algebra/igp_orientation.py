@@ -446,3 +446,58 @@ def exact_solution(robot: Robot, rotation) -> list | None:
     if Xw is None or any(sp.simplify(m) != 0 for m in gen.minors_M_prime(*prob.params(), *Xw)):
         return None
     return list(prob.to_world(Xw))
+
+
+def igp_orientation_batch(robot: Robot, rotations) -> tuple[np.ndarray, np.ndarray]:
+    """Vectorized closed form over many orientations (generic case Delta != 0 of Sec. 3.1).
+
+    ``rotations``: (N, 3, 3).  Returns ``(G, ok)``: G (N, 3) world positions of the centre of mass and a mask of
+    the orientations where the generic formula applies (Delta, E_4 and the z coefficient clearly non-zero);
+    the others are NaN and should go through :func:`igp_orientation`, which handles App. A.  No Newton polish:
+    use :func:`igp_orientation` when a certificate of the single pose is wanted.
+    """
+    if robot.n != 3:
+        raise CdprInputError("base", f"the IGP with assigned orientation needs exactly 3 cables, the robot has {robot.n}")
+    Rs = np.asarray(rotations, dtype=float)
+    if Rs.ndim != 3 or Rs.shape[1:] != (3, 3):
+        raise CdprInputError("rotations", f"expected an array of shape (N, 3, 3), got {Rs.shape}")
+    W = _load_frame(robot.load_direction, False)
+    L = robot.size
+    a = [(W @ (A - robot.base[0])) / L for A in robot.base]
+    r = [np.einsum("ij,njk,k->ni", W, Rs, b - robot.com) / L for b in robot.platform]  # (N, 3) each
+
+    def params(c, s):
+        def turn_const(v):
+            return [np.full(len(Rs), c * v[0] + s * v[1]), np.full(len(Rs), -s * v[0] + c * v[1]), np.full(len(Rs), v[2])]
+
+        def turn(v):
+            return [c * v[:, 0] + s * v[:, 1], -s * v[:, 0] + c * v[:, 1], v[:, 2]]
+        return turn_const(a[1]) + turn_const(a[2]) + turn(r[0]) + turn(r[1]) + turn(r[2])
+
+    coords = []
+    ok = np.ones(len(Rs), dtype=bool)
+    for c, s in ((1, 0), (0, 1)):
+        p = params(c, s)
+        E = p123(p)
+        size = np.max(np.abs(np.array(E[:5])), axis=0)
+        ok &= np.abs(E[4]) > 1e-9 * size
+        with np.errstate(divide="ignore", invalid="ignore"):
+            triv = sum(c * (ai[0] - ri[:, 0]) + s * (ai[1] - ri[:, 1]) for ai, ri in zip(a, r))
+            coords.append(-E[3] / E[4] - triv)
+    X, Y = coords
+    p = params(1, 0)
+    ok &= np.abs(gen.delta(*p)[0]) > 1e-9 * gen.delta_magnitude(*[np.abs(v) for v in p])[0]
+    cs2, cs3 = gen.p2_coefficients(*p), gen.p3_coefficients(*p)
+    cz2 = cs2[2] * X + cs2[4] * Y + cs2[8]
+    cz3 = cs3[2] * X + cs3[4] * Y + cs3[8]
+    rest2 = cs2[0] * X * X + cs2[1] * X * Y + cs2[3] * Y * Y + cs2[6] * X + cs2[7] * Y + cs2[9]
+    rest3 = cs3[0] * X * X + cs3[1] * X * Y + cs3[3] * Y * Y + cs3[6] * X + cs3[7] * Y + cs3[9]
+    use2 = np.abs(cz2) >= np.abs(cz3)
+    cz = np.where(use2, cz2, cz3)
+    ok &= np.abs(cz) > 1e-12
+    with np.errstate(divide="ignore", invalid="ignore"):
+        Z = -np.where(use2, rest2, rest3) / cz
+    Xw = np.stack([X, Y, Z], axis=1) * L
+    G = Xw @ W + robot.base[0]  # W^T applied to rows
+    G[~ok] = np.nan
+    return G, ok

@@ -36,8 +36,15 @@ coefficients of powers of e0.
 
 Row choices of S(e3) are made here deterministically: candidate row sets are tried in a fixed order and the
 first one is kept for which det S(e3) has degree exactly 24 on random rational instances (computed modulo
-a large prime by evaluation/interpolation), is nonzero on a set of special geometries (see
-``SPECIAL_INSTANCES``) and, for the 21 x 21 form, contains all six degree-5 monomials.
+a large prime by evaluation/interpolation; degree 24 means det S is the resultant, free of extraneous
+factors, since each of the 24 solutions is a root) and is nonzero on the special geometries of
+``SPECIAL_INSTANCES`` (for the 20 x 20 form only on those where some 20 x 20 choice can be nonsingular).
+The 21 x 21 choice must also contain all six degree-5 monomials.
+
+Finding (recorded in the generated module): on seed 004's Table 4 geometry (and whenever G, B1, B2, B3 are
+coplanar) the 11 quartics and their 11 e2-multiples have rank 19 in the 20 unknowns, so EVERY 20 x 20
+matrix of the paper's construction is singular there; the degree-20 polynomial printed in Table 4 is
+(up to a constant) det S(e3) of the 21 x 21 form.
 """
 
 from __future__ import annotations
@@ -655,42 +662,75 @@ def random_instances(seed, count, kind="generic"):
     return out
 
 
+# special geometries: name -> (instances, required for the 20 x 20 form)
 SPECIAL_INSTANCES = {
-    "table4 (App. B, e0 = 0 solutions)": [TABLE4],
-    "horizontal base plane": random_instances(11, 1, "flat_base"),
-    "platform plane through G": random_instances(12, 1, "flat_platform"),
+    "Table 4 (App. B: x on the plane through A1, A2 parallel to k, b1 x b2 || (a1 - a2) x k)": ([TABLE4], False),
+    "horizontal base plane (a2z = a3z = 0)": (random_instances(11, 1, "flat_base"), True),
+    "G in the plane of B1, B2, B3 (b_iz = 0)": (random_instances(12, 1, "flat_platform"), False),
 }
+
+
+def _rank_mod(M, p=PRIME):
+    M = [row[:] for row in M]
+    rank, ncols = 0, len(M[0])
+    for c in range(ncols):
+        piv = next((r for r in range(rank, len(M)) if M[r][c] % p), None)
+        if piv is None:
+            continue
+        M[rank], M[piv] = M[piv], M[rank]
+        inv = pow(M[rank][c], p - 2, p)
+        for r in range(len(M)):
+            if r != rank and M[r][c] % p:
+                f = M[r][c] * inv % p
+                M[r] = [(a - f * b) % p for a, b in zip(M[r], M[rank])]
+        rank += 1
+    return rank
+
+
+def _rank_at(qmod, rows, cols, t=123456789):
+    ent = scatter(rows, cols)
+    M = [[0] * len(cols) for _ in rows]
+    tp = [pow(t, k, PRIME) for k in range(5)]
+    for k, r, c, q, m in ent:
+        M[r][c] = (M[r][c] + qmod[q][m] * tp[k]) % PRIME
+    return _rank_mod(M)
 
 
 def choose_rows(qfun):
     """Deterministic row choices for the 20 x 20 and 21 x 21 forms (see module docstring)."""
     generic = [_qmod(qfun, inst) for inst in random_instances(2013, 2)]
-    special = {k: [_qmod(qfun, inst) for inst in v] for k, v in SPECIAL_INSTANCES.items()}
+    special = {k: ([_qmod(qfun, inst) for inst in v], req) for k, (v, req) in SPECIAL_INSTANCES.items()}
 
-    def ok(rows, cols, need_special=True):
+    def ok(rows, cols, form):
         ent = scatter(rows, cols)
         for q in generic:
             if len(det_poly_mod(q, ent, len(cols))) - 1 != 24:
                 return False
-        if need_special:
-            for qs in special.values():
-                for q in qs:
-                    if not det_poly_mod(q, ent, len(cols)):
-                        return False
+        for qs, req20 in special.values():
+            if form == 20 and not req20:
+                continue
+            for q in qs:
+                if not det_poly_mod(q, ent, len(cols)):
+                    return False
         return True
 
     log = []
     cols20 = monomials_e12(False)
     e2rows = [(q, (0, 1)) for q in range(11)]
+    for name, (qs, req20) in special.items():
+        if not req20:
+            rk = _rank_at(qs[0], base_rows() + e2rows, cols20)
+            log.append(f"{name}: the 11 quartics and their 11 e2-multiples have rank {rk} < 20 in the 20 "
+                       "unknowns, so every 20 x 20 choice is singular there; use the 21 x 21 form")
     choice20 = None
     tried = 0
     for drop in itertools.combinations(range(11), 2):
         rows = base_rows() + [r for q, r in enumerate(e2rows) if q not in drop]
         tried += 1
-        if ok(rows, cols20):
+        if ok(rows, cols20, 20):
             choice20 = rows
             log.append(f"20 x 20: dropped e2*{QUARTIC_NAMES[drop[0]]}, e2*{QUARTIC_NAMES[drop[1]]} "
-                       f"(candidate {tried} of 55 in lexicographic order of the dropped pair)")
+                       f"(candidate {tried} of 55, lexicographic order of the dropped pair)")
             break
     if choice20 is None:
         raise AssertionError("no valid 20 x 20 row choice")
@@ -703,16 +743,15 @@ def choose_rows(qfun):
     for subset in itertools.combinations(range(22), 10):
         rows = base_rows() + [cand[i] for i in subset]
         ent = scatter(rows, cols21)
-        # must contain all six degree-5 monomials
         deg5 = {c for k, r, c, q, m in ent if sum(cols21[c]) == 5}
         if len(deg5) < 6:
             continue
         tried += 1
-        if ok(rows, cols21):
+        if ok(rows, cols21, 21):
             choice21 = rows
             log.append("21 x 21: products " + ", ".join(_rowname(r) for r in rows[11:])
-                       + f" (first valid 10-subset, in lexicographic order, of e1*p1, e2*p1, e1*p2, ..., e2*p15; "
-                       f"{tried} subsets tested)")
+                       + f" (first valid 10-subset, lexicographic in e1*p1, e2*p1, e1*p2, ..., e2*p15; "
+                       f"{tried} tested)")
             break
     if choice21 is None:
         raise AssertionError("no valid 21 x 21 row choice")

@@ -1,0 +1,53 @@
+"""The CLI is a thin layer: its JSON carries the library's numbers (seed 004 Tables 1-2)."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+
+from cdpr_algebra.cli import main
+
+KEYS = {"position", "com_position", "rotation", "angles", "euler_parameters", "lengths", "tensions", "admissible",
+        "hessian", "stable", "real"}
+
+
+def test_igp_orientation_json(capsys):
+    assert main(["igp", "examples/seed004_table1.toml", "--orientation", "0", "0", "0", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    (sol,) = out["solutions"]
+    assert KEYS <= set(sol)
+    assert np.allclose(sol["com_position"], [5196 / 1805, 2973 / 722, 139299 / 20938], rtol=1e-12)
+    assert np.allclose(sol["lengths"], [8.01, 10.36, 9.85], atol=0.005)
+    assert sol["hessian"] == ">" and sol["stable"] and sol["admissible"] and sol["real"]
+    assert out["solution_set"] is None
+
+
+def test_igp_orientation_degrees_and_table(capsys):
+    assert main(["igp", "examples/seed004_table1.toml", "--orientation", "90", "0", "0", "--degrees", "--json"]) == 0
+    deg = json.loads(capsys.readouterr().out)
+    assert main(["igp", "examples/seed004_table1.toml", "--orientation", str(np.pi / 2), "0", "0", "--json"]) == 0
+    rad = json.loads(capsys.readouterr().out)
+    assert np.allclose(deg["solutions"][0]["com_position"], rad["solutions"][0]["com_position"])
+    assert main(["igp", "examples/seed004_table2.toml", "--orientation", "0", "0", "0", "--exact"]) == 0
+    text = capsys.readouterr().out
+    assert "-989/137" in text and "<>" in text and "(+39.37, +42.29, +38.27)" in text
+
+
+def test_special_set_reported(tmp_path, capsys):
+    robot = tmp_path / "fig3a.json"
+    robot.write_text(json.dumps({"base": [[0, 0, 0], [8, 0, 0], [0, 7, 0]],
+                                 "platform": [[-0.5, -0.5, -1], [1, 0, -1], [0, 1, -1]],
+                                 "com": [0, 0, 0], "load": 10, "load_direction": [0, 0, 1]}))
+    assert main(["igp", str(robot), "--orientation", "0", "0", "0", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["solutions"] == [] and out["solution_set"]["kind"] == "vertical_line"
+
+
+def test_python_dash_m():
+    proc = subprocess.run([sys.executable, "-m", "cdpr_algebra", "igp", "examples/seed004_table1.toml",
+                           "--orientation", "0", "0", "0"], capture_output=True, text=True)
+    assert proc.returncode == 0 and "(+8.01, +10.36, +9.85)" in proc.stdout
+    bad = subprocess.run([sys.executable, "-m", "cdpr_algebra", "igp", "missing.toml", "--orientation", "0", "0", "0"],
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and "no such file" in bad.stderr and "Traceback" not in bad.stderr

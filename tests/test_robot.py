@@ -1,0 +1,111 @@
+"""Robot files and bad input: one clear error naming the field, exit status 2 in the CLI."""
+
+import json
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from cdpr_algebra import CdprInputError, Robot, load_robot
+from cdpr_algebra.cli import main
+
+GOOD = {
+    "name": "t",
+    "base": [[0, 0, 0], [10, 0, 0], [0, 12, 0]],
+    "platform": [[0.6, 0.1, -0.8], [-0.4, -0.9, -0.3], [-0.7, 0.5, -0.5]],
+    "com": [0, 0, 0],
+    "load": 10,
+    "load_direction": [0, 0, 1],
+}
+
+
+def _write(tmp_path, data, name="r.json"):
+    p = tmp_path / name
+    p.write_text(json.dumps(data) if isinstance(data, dict) else data)
+    return p
+
+
+def test_json_and_toml_agree(tmp_path):
+    toml = """name = "t"
+base = [[0, 0, 0], [10, 0, 0], [0, 12, 0]]
+platform = [[0.6, 0.1, -0.8], [-0.4, -0.9, -0.3], [-0.7, 0.5, -0.5]]
+com = [0, 0, 0]
+load = 10
+load_direction = [0, 0, 1]
+"""
+    a = load_robot(_write(tmp_path, GOOD))
+    b = load_robot(_write(tmp_path, toml, "r.toml"))
+    assert a.to_dict() == b.to_dict()
+    assert Robot.from_dict(a.to_dict()).to_dict() == a.to_dict()
+
+
+@pytest.mark.parametrize(
+    "change, field, words",
+    [
+        ({"base": [[0, 0, 0], [10, 0], [0, 12, 0]]}, "base[1]", "expected 3 numbers"),
+        ({"platform": [[0, 0, 0]]}, "platform", "expected 3 points"),
+        ({"base": [[0, 0, 0], [10, 0, float("nan")], [0, 12, 0]]}, "base[1][2]", "finite"),
+        ({"load": 0}, "load", "> 0"),
+        ({"load": -3}, "load", "> 0"),
+        ({"load_direction": [0, 0, 0]}, "load_direction", "zero vector"),
+        ({"lengths": [1, -2, 3]}, "lengths[1]", "> 0"),
+        ({"lengths": [1, 2]}, "lengths", "expected 3 numbers"),
+        ({"base": [[0, 0, 0], [0, 0, 0], [0, 12, 0]]}, "base", "coincide"),
+        ({"platform": [[1, 0, 0], [0, 1, 0], [1, 0, 0]]}, "platform", "coincide"),
+        ({"bases": [[0, 0, 0]]}, "bases", "unknown key"),
+        ({"com": "middle"}, "com", "expected a list"),
+        ({"load": "heavy"}, "load", "expected a number"),
+    ],
+)
+def test_bad_input_names_field(tmp_path, change, field, words, capsys):
+    data = dict(GOOD) | change
+    path = _write(tmp_path, data)
+    with pytest.raises(CdprInputError) as err:
+        load_robot(path)
+    assert err.value.field == field and words in str(err.value)
+    assert main(["igp", str(path), "--orientation", "0", "0", "0"]) == 2
+    line = capsys.readouterr().err
+    assert line.count("\n") == 1 and f"'{field}'" in line and "Traceback" not in line
+
+
+def test_missing_key_and_unreadable_files(tmp_path, capsys):
+    data = dict(GOOD)
+    del data["com"]
+    with pytest.raises(CdprInputError, match="'com': required key is missing"):
+        load_robot(_write(tmp_path, data))
+    with pytest.raises(CdprInputError, match="no such file"):
+        load_robot(tmp_path / "nope.json")
+    with pytest.raises(CdprInputError, match="not valid JSON"):
+        load_robot(_write(tmp_path, "{base: ", "bad.json"))
+    with pytest.raises(CdprInputError, match="not valid TOML"):
+        load_robot(_write(tmp_path, "base = [", "bad.toml"))
+    with pytest.raises(CdprInputError, match="expected .json or .toml"):
+        load_robot(_write(tmp_path, "x", "r.yaml"))
+    assert main(["igp", str(tmp_path / "nope.json"), "--position", "1", "2", "3"]) == 2
+    assert "no such file" in capsys.readouterr().err
+
+
+def test_cli_argument_errors(capsys):
+    with pytest.raises(SystemExit) as e:
+        main(["igp", "examples/seed004_table1.toml", "--orientation", "0", "zero", "0"])
+    assert e.value.code == 2
+    assert "expected a number" in capsys.readouterr().err
+
+
+def test_load_direction_normalized():
+    r = Robot.from_dict(dict(GOOD) | {"load_direction": [0, 0, 5]})
+    assert np.allclose(r.load_direction, [0, 0, 1])
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.dictionaries(st.sampled_from(["base", "platform", "com", "load", "load_direction", "lengths", "name", "extra"]),
+                       st.one_of(st.none(), st.integers(-3, 3), st.floats(allow_nan=True), st.text(max_size=3),
+                                 st.lists(st.one_of(st.floats(), st.lists(st.floats(), max_size=4)), max_size=4)),
+                       max_size=8))
+def test_arbitrary_input_never_crashes_deep(data):
+    """Whatever the mapping, the result is a Robot or a CdprInputError (never a numpy traceback)."""
+    try:
+        Robot.from_dict(data)
+    except CdprInputError as err:
+        assert err.field
