@@ -79,43 +79,59 @@ class IGPSolution:
 
 
 def make_solution(robot, com_position, rotation, euler_parameters=None, real_tol: float = 1e-9) -> IGPSolution:
-    """Complete an IGP root (G and R known) with lengths, tensions, residual and H_r class.
+    """Complete one IGP root (G and R known) with lengths, tensions, residual and H_r class (see make_solutions)."""
+    eps = None if euler_parameters is None else [euler_parameters]
+    return make_solutions(robot, [com_position], [rotation], eps, real_tol)[0]
 
-    Works with complex G and R (then ``real`` is False unless the imaginary parts are negligible).
+
+def make_solutions(robot, com_positions, rotations, euler_parameters=None, real_tol: float = 1e-9) -> list:
+    """Complete IGP roots (G_k and R_k known) with lengths, tensions, residual and H_r class, all at once.
+
+    Complex roots are kept complex (``real`` False, no H_r class) unless their imaginary parts are negligible.
     """
-    G = np.asarray(com_position)
-    R = np.asarray(rotation)
-    is_real = bool(
-        np.abs(np.imag(G)).max() <= real_tol * max(1.0, np.abs(G).max())
-        and np.abs(np.imag(R)).max() <= real_tol
-    )
-    if is_real:
-        G = np.real(G).astype(float)
-        R = np.real(R).astype(float)
-    if euler_parameters is None:
-        euler_parameters = euler_parameters_from_matrix(np.real(R))
-    rl = R @ (robot.platform - robot.com).T  # r_i = B_i - G
-    B = G + rl.T
+    Gs = np.asarray(com_positions)
+    Rs = np.asarray(rotations)
+    if len(Gs) == 0:
+        return []
+    g_im = np.abs(np.imag(Gs)).max(axis=-1) <= real_tol * np.maximum(1.0, np.abs(Gs).max(axis=-1))
+    r_im = np.abs(np.imag(Rs)).max(axis=(-1, -2)) <= real_tol
+    is_real = g_im & r_im
     L = robot.size
-    eq = equilibrium_tensions(robot.base, B, G, robot.load, robot.load_direction, length_scale=L)
-    hess = None
-    if is_real:
-        Hr = reduced_hessian(robot.base, B, G, eq.tensions, eq.lengths, length_scale=L)
-        scale = float(np.sum(np.abs(eq.tensions) / eq.lengths) + robot.load / L)
-        hess = hessian_class(Hr, scale)
-    position = G - R @ robot.com
-    return IGPSolution(
-        position=position,
-        com_position=G,
-        rotation=R,
-        euler_parameters=np.asarray(euler_parameters),
-        lengths=eq.lengths,
-        tensions=eq.tensions,
-        hessian=hess,
-        real=is_real,
-        residual=eq.residual,
-        tension_tolerance=1e-9 * robot.load,
-    )
+    local = robot.platform - robot.com
+    out = [None] * len(Gs)
+    for mask, dtype in ((is_real, float), (~is_real, complex)):
+        idx = np.flatnonzero(mask)
+        if len(idx) == 0:
+            continue
+        G = (np.real(Gs[idx]) if dtype is float else Gs[idx]).astype(dtype)
+        R = (np.real(Rs[idx]) if dtype is float else Rs[idx]).astype(dtype)
+        B = G[:, None, :] + np.einsum("kij,nj->kni", R, local)
+        eq = equilibrium_tensions(robot.base, B, G, robot.load, robot.load_direction, length_scale=L)
+        classes = [None] * len(idx)
+        if dtype is float:
+            try:
+                Hr = reduced_hessian(robot.base, B, G, eq.tensions, eq.lengths, length_scale=L)
+            except np.linalg.LinAlgError:  # a cable configuration with parallel cables: one at a time
+                Hr = [reduced_hessian(robot.base, b, g, t, ln, length_scale=L)
+                      for b, g, t, ln in zip(B, G, eq.tensions, eq.lengths)]
+            scale = np.sum(np.abs(eq.tensions) / eq.lengths, axis=-1) + robot.load / L
+            classes = [hessian_class(h, sc) for h, sc in zip(Hr, scale)]
+        residual = np.atleast_1d(eq.residual)
+        for j, k in enumerate(idx):
+            e = euler_parameters[k] if euler_parameters is not None else euler_parameters_from_matrix(np.real(R[j]))
+            out[k] = IGPSolution(
+                position=G[j] - R[j] @ robot.com,
+                com_position=G[j],
+                rotation=R[j],
+                euler_parameters=np.asarray(e),
+                lengths=eq.lengths[j],
+                tensions=eq.tensions[j],
+                hessian=classes[j],
+                real=dtype is float,
+                residual=float(residual[j]),
+                tension_tolerance=1e-9 * robot.load,
+            )
+    return out
 
 
 @dataclass(frozen=True)

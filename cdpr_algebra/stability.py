@@ -3,7 +3,8 @@
 With r_i = B_i - G, s_i = B_i - A_i and small displacements (dG, theta) of the platform,
 H = sum_i tau_i / rho_i [[I, -skew(r_i)], [skew(r_i), (skew(r_i) skew(G - A_i) + skew(G - A_i) skew(r_i)) / 2]]
 (eq. 29), J^T has rows [s_i^T, (r_i x s_i)^T] / rho_i (eq. 30), N spans its null space and H_r = N^T H N (eq. 28).
-The load does no work in rotations about G, so it adds nothing to H.
+The load does no work in rotations about G, so it adds nothing to H.  Every function takes a stack of poses
+(leading dimensions on B, G, tensions, lengths).
 """
 
 from __future__ import annotations
@@ -11,28 +12,54 @@ from __future__ import annotations
 import numpy as np
 import scipy.linalg
 
-from .pose import skew
+from .statics import cross
 
 CLASSES = (">", ">=", "<", "<=", "<>")
 
 
+def skew_stack(v) -> np.ndarray:
+    """skew(v) for v (..., 3) -> (..., 3, 3)."""
+    v = np.asarray(v)
+    z = np.zeros_like(v[..., 0])
+    return np.stack([np.stack([z, -v[..., 2], v[..., 1]], -1),
+                     np.stack([v[..., 2], z, -v[..., 0]], -1),
+                     np.stack([-v[..., 1], v[..., 0], z], -1)], -2)
+
+
 def hessian(A, B, G, tensions, lengths) -> np.ndarray:
-    """The 6 x 6 matrix H of seed 000 eq. (29) (moment pole G)."""
-    H = np.zeros((6, 6))
-    for a, b, t, rho in zip(np.atleast_2d(A), np.atleast_2d(B), tensions, lengths):
-        r = skew(b - G)
-        ga = skew(G - a)
-        blk = np.block([[np.eye(3), -r], [r, 0.5 * (r @ ga + ga @ r)]])
-        H += (t / rho) * blk
+    """The 6 x 6 matrix H of seed 000 eq. (29) (moment pole G); shape (..., 6, 6)."""
+    B = np.asarray(B)
+    G = np.asarray(G)[..., None, :]
+    r = skew_stack(B - G)  # (..., m, 3, 3)
+    ga = skew_stack(G - np.asarray(A))
+    w = (np.asarray(tensions) / np.asarray(lengths))[..., None, None]
+    H = np.zeros(B.shape[:-2] + (6, 6), dtype=np.result_type(B, w))
+    H[..., :3, :3] = np.sum(w, axis=-3) * np.eye(3)
+    H[..., :3, 3:] = -np.sum(w * r, axis=-3)
+    H[..., 3:, :3] = np.sum(w * r, axis=-3)
+    H[..., 3:, 3:] = 0.5 * np.sum(w * (r @ ga + ga @ r), axis=-3)
     return H
 
 
 def constraint_jacobian(A, B, G, lengths) -> np.ndarray:
-    """J^T of seed 000 eq. (30): rows [s_i^T, ((B_i - G) x s_i)^T] / rho_i."""
-    A = np.atleast_2d(A)
-    B = np.atleast_2d(B)
-    s = B - A
-    return np.hstack([s, np.cross(B - G, s)]) / np.asarray(lengths)[:, None]
+    """J^T of seed 000 eq. (30): rows [s_i^T, ((B_i - G) x s_i)^T] / rho_i; shape (..., m, 6)."""
+    B = np.asarray(B)
+    s = B - np.asarray(A)
+    return np.concatenate([s, cross(B - np.asarray(G)[..., None, :], s)], axis=-1) / np.asarray(lengths)[..., None]
+
+
+def _null_space(JT) -> np.ndarray:
+    """Orthonormal null-space basis (..., 6, 6 - rank); stacks must share one rank (else per item)."""
+    if JT.shape[-2] == 0:
+        return np.broadcast_to(np.eye(6), JT.shape[:-2] + (6, 6))
+    if JT.ndim == 2:
+        return scipy.linalg.null_space(JT)
+    _, s, vh = np.linalg.svd(JT, full_matrices=True)
+    tol = np.max(s, axis=-1, keepdims=True) * max(JT.shape[-2:]) * np.finfo(float).eps
+    rank = np.sum(s > tol, axis=-1)
+    if np.all(rank == JT.shape[-2]):
+        return np.swapaxes(vh[..., JT.shape[-2]:, :], -1, -2).conj()
+    raise np.linalg.LinAlgError("rank-deficient J^T in a stack: call reduced_hessian per pose")
 
 
 def reduced_hessian(A, B, G, tensions, lengths, length_scale: float = 1.0) -> np.ndarray:
@@ -42,21 +69,24 @@ def reduced_hessian(A, B, G, tensions, lengths, length_scale: float = 1.0) -> np
     """
     T = np.diag([1.0, 1.0, 1.0] + [1.0 / length_scale] * 3)
     H = T @ hessian(A, B, G, tensions, lengths) @ T
-    JT = constraint_jacobian(A, B, G, lengths) @ T
-    N = scipy.linalg.null_space(JT) if len(JT) else np.eye(6)
-    return N.T @ H @ N
+    N = _null_space(constraint_jacobian(A, B, G, lengths) @ T)
+    return np.swapaxes(N, -1, -2) @ H @ N
 
 
-def hessian_class(Hr, scale: float, rtol: float = 1e-8) -> str:
-    """'>', '>=', '<', '<=' or '<>' (positive definite ... indefinite).
+def hessian_class(Hr, scale, rtol: float = 1e-8):
+    """'>', '>=', '<', '<=' or '<>' (positive definite ... indefinite); a list for a stack.
 
     Eigenvalues with |lambda| <= rtol * scale count as zero; ``scale`` is a stiffness of the problem
-    (e.g. sum tau_i / rho_i + Q / L). An empty H_r (platform fully constrained) is '>'.
+    (e.g. sum |tau_i| / rho_i + Q / L). An empty H_r (platform fully constrained) is '>'.
     """
+    Hr = np.asarray(Hr)
+    if Hr.ndim > 2:
+        scale = np.broadcast_to(scale, Hr.shape[:-2])
+        return [hessian_class(h, s, rtol) for h, s in zip(Hr, scale)]
     if Hr.size == 0:
         return ">"
     lam = np.linalg.eigvalsh(0.5 * (Hr + Hr.T))
-    tol = rtol * scale
+    tol = rtol * float(scale)
     pos = lam > tol
     neg = lam < -tol
     if pos.all():

@@ -92,7 +92,6 @@ def _monomials(deg, nvar=4):
     return tuple(sorted(out, reverse=True))
 
 
-QUAD_MONOMIALS = _monomials(2)
 QUARTIC_MONOMIALS = _monomials(4)
 
 # --------------------------------------------------------------------------------------------------
@@ -645,7 +644,6 @@ def _to_mod(v, p=PRIME):
 
 
 # instances: (a2, a3, b1, b2, b3, x)
-TABLE3 = ((9, 10, 0), (6, 8, 7), (-7, 3, 2), (-5, 1, -1), (-5, -2, 0), (7, 9, 1))
 TABLE4 = ((10, 0, 3), (0, 12, -1), (-3, 0, -1), (2, 0, -2), (Fraction(1, 2), 2, Fraction(-1, 2)), (5, 0, 6))
 
 
@@ -662,11 +660,11 @@ def random_instances(seed, count, kind="generic"):
     return out
 
 
-# special geometries: name -> (instances, required for the 20 x 20 form)
+# special geometries: name -> (instances, required for the 20 x 20 form, required for the 21 x 21 form)
 SPECIAL_INSTANCES = {
-    "Table 4 (App. B: x on the plane through A1, A2 parallel to k, b1 x b2 || (a1 - a2) x k)": ([TABLE4], False),
-    "horizontal base plane (a2z = a3z = 0)": (random_instances(11, 1, "flat_base"), True),
-    "G in the plane of B1, B2, B3 (b_iz = 0)": (random_instances(12, 1, "flat_platform"), False),
+    "Table 4 (App. B: x on the plane through A1, A2 parallel to k, b1 x b2 || (a1 - a2) x k)": ([TABLE4], False, True),
+    "horizontal base plane (a2z = a3z = 0)": (random_instances(11, 1, "flat_base"), True, True),
+    "G in the plane of B1, B2, B3 (b_iz = 0)": (random_instances(12, 1, "flat_platform"), False, False),
 }
 
 
@@ -699,29 +697,31 @@ def _rank_at(qmod, rows, cols, t=123456789):
 def choose_rows(qfun):
     """Deterministic row choices for the 20 x 20 and 21 x 21 forms (see module docstring)."""
     generic = [_qmod(qfun, inst) for inst in random_instances(2013, 2)]
-    special = {k: ([_qmod(qfun, inst) for inst in v], req) for k, (v, req) in SPECIAL_INSTANCES.items()}
+    special = {k: ([_qmod(qfun, inst) for inst in v], r20, r21) for k, (v, r20, r21) in SPECIAL_INSTANCES.items()}
 
     def ok(rows, cols, form):
-        ent = scatter(rows, cols)
-        for q in generic:
-            if len(det_poly_mod(q, ent, len(cols))) - 1 != 24:
-                return False
-        for qs, req20 in special.values():
-            if form == 20 and not req20:
-                continue
-            for q in qs:
-                if not det_poly_mod(q, ent, len(cols)):
+        size = len(cols)
+        # cheap necessary tests first: nonsingular at a random e3
+        for qs, r20, r21 in special.values():
+            if (r20 if form == 20 else r21):
+                if any(_rank_at(q, rows, cols) < size for q in qs):
                     return False
-        return True
+        if any(_rank_at(q, rows, cols) < size for q in generic):
+            return False
+        ent = scatter(rows, cols)
+        return all(len(det_poly_mod(q, ent, size)) - 1 == 24 for q in generic)
 
     log = []
     cols20 = monomials_e12(False)
+    cols21 = monomials_e12(True)
     e2rows = [(q, (0, 1)) for q in range(11)]
-    for name, (qs, req20) in special.items():
-        if not req20:
-            rk = _rank_at(qs[0], base_rows() + e2rows, cols20)
-            log.append(f"{name}: the 11 quartics and their 11 e2-multiples have rank {rk} < 20 in the 20 "
-                       "unknowns, so every 20 x 20 choice is singular there; use the 21 x 21 form")
+    allrows = base_rows() + [(q, m) for q in range(11) for m in ((1, 0), (0, 1))]
+    for name, (qs, r20, r21) in special.items():
+        rq = _rank_mod([row[:] for row in qs[0]])
+        r22 = _rank_at(qs[0], base_rows() + e2rows, cols20)
+        r33 = _rank_at(qs[0], allrows, cols21)
+        log.append(f"{name}: rank of the 11 quartics {rq}; of the quartics and their e2-multiples in the 20 "
+                   f"unknowns {r22}; of the quartics and all 22 products in the 21 unknowns {r33}")
     choice20 = None
     tried = 0
     for drop in itertools.combinations(range(11), 2):
@@ -734,7 +734,6 @@ def choose_rows(qfun):
             break
     if choice20 is None:
         raise AssertionError("no valid 20 x 20 row choice")
-    cols21 = monomials_e12(True)
     # candidates: products in the order e1*p1, e2*p1, e1*p2, e2*p2, ...; the first 10-subset (lexicographic)
     # containing all degree-5 monomials and passing the degree / special tests
     cand = [(q, m) for q in range(11) for m in ((1, 0), (0, 1))]

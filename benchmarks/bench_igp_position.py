@@ -1,0 +1,61 @@
+"""Speed of the IGP with assigned position (seed 004 Sec. 4, Table 3).  Run by hand:
+
+    python3 benchmarks/bench_igp_position.py [--runs 200]
+
+Prints the median over ``--runs`` calls of:
+* ``igp_position`` on seed 004 Table 3 (x = [7, 9, 1]): everything, including ``make_solutions`` (lengths,
+  tensions, residual, H_r class, batched over the 24 solutions);
+* ``solve_euler_parameters``: the numeric core alone (quartic coefficients, dialytic eigenproblem, clusters,
+  e0 = 0 branch, Newton polish, verification, deduplication) returning the 24 Euler parameter vectors;
+* ``make_solutions`` for the 24 solutions at once (its share of the full call);
+* the exact determinant det S(e3) (20 x 20 form) for Table 3.
+"""
+
+import argparse
+import statistics
+import time
+from pathlib import Path
+
+import numpy as np
+
+from cdpr_algebra import load_robot
+from cdpr_algebra.igp_position import dialytic_determinant, igp_position, solve_euler_parameters
+from cdpr_algebra.pose import matrix_from_euler_parameters
+from cdpr_algebra.results import make_solutions
+
+ROOT = Path(__file__).resolve().parent.parent
+X = [7.0, 9.0, 1.0]
+
+
+def median_time(fn, runs):
+    fn()  # warm up
+    times = []
+    for _ in range(runs):
+        t = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t)
+    return statistics.median(times)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--runs", type=int, default=200)
+    args = ap.parse_args()
+    robot = load_robot(ROOT / "examples/seed004_table3.toml")
+    res = igp_position(robot, X)
+    assert len(res.real_solutions) == 24, res.message
+    full = median_time(lambda: igp_position(robot, X), args.runs)
+    core = median_time(lambda: solve_euler_parameters(robot, X), args.runs)
+    eps = [np.real(s.euler_parameters) for s in res.solutions]
+    Rs = [matrix_from_euler_parameters(e) for e in eps]
+    batch = median_time(lambda: make_solutions(robot, [X] * len(eps), Rs, eps), args.runs)
+    exact = median_time(lambda: dialytic_determinant(robot, X, "20"), max(3, args.runs // 20))
+    print(f"IGP assigned position, seed 004 Table 3, 24 real solutions (median of {args.runs} runs)")
+    print(f"  igp_position (all 24 solutions, complete):          {full * 1e3:8.2f} ms")
+    print(f"  numeric core solve_euler_parameters:                {core * 1e3:8.2f} ms")
+    print(f"  make_solutions, the 24 solutions batched:           {batch * 1e3:8.2f} ms")
+    print(f"  exact det S(e3), 20 x 20 form:                      {exact * 1e3:8.1f} ms")
+
+
+if __name__ == "__main__":
+    main()
