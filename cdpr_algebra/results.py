@@ -115,7 +115,7 @@ def make_solutions(robot, com_positions, rotations, euler_parameters=None, real_
                 Hr = [reduced_hessian(robot.base, b, g, t, ln, length_scale=L)
                       for b, g, t, ln in zip(B, G, eq.tensions, eq.lengths)]
             scale = np.sum(np.abs(eq.tensions) / eq.lengths, axis=-1) + robot.load / L
-            classes = [hessian_class(h, sc) for h, sc in zip(Hr, scale)]
+            classes = hessian_class(np.asarray(Hr), scale)
         residual = np.atleast_1d(eq.residual)
         for j, k in enumerate(idx):
             e = euler_parameters[k] if euler_parameters is not None else euler_parameters_from_matrix(np.real(R[j]))

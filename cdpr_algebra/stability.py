@@ -80,21 +80,11 @@ def hessian_class(Hr, scale, rtol: float = 1e-8):
     (e.g. sum |tau_i| / rho_i + Q / L). An empty H_r (platform fully constrained) is '>'.
     """
     Hr = np.asarray(Hr)
-    if Hr.ndim > 2:
-        scale = np.broadcast_to(scale, Hr.shape[:-2])
-        return [hessian_class(h, s, rtol) for h, s in zip(Hr, scale)]
-    if Hr.size == 0:
-        return ">"
-    lam = np.linalg.eigvalsh(0.5 * (Hr + Hr.T))
-    tol = rtol * float(scale)
-    pos = lam > tol
-    neg = lam < -tol
-    if pos.all():
-        return ">"
-    if neg.all():
-        return "<"
-    if pos.any() and neg.any():
-        return "<>"
-    if not neg.any():
-        return ">="
-    return "<="
+    if Hr.shape[-1] == 0:
+        return [">"] * int(np.prod(Hr.shape[:-2])) if Hr.ndim > 2 else ">"
+    lam = np.linalg.eigvalsh(0.5 * (Hr + np.swapaxes(Hr, -1, -2)))
+    tol = rtol * np.asarray(scale, dtype=float)[..., None]
+    pos = np.all(lam > tol, axis=-1), np.any(lam > tol, axis=-1)
+    neg = np.all(lam < -tol, axis=-1), np.any(lam < -tol, axis=-1)
+    out = np.where(pos[0], ">", np.where(neg[0], "<", np.where(pos[1] & neg[1], "<>", np.where(neg[1], "<=", ">="))))
+    return out.tolist() if out.ndim else str(out)
