@@ -1,0 +1,153 @@
+"""Benchmark of the homotopy engine (issue #3): paths, solutions, wall time, paths per second.
+
+    python benchmarks/bench_homotopy.py [--runs 5] [--phc] [--regenerate]
+
+Systems: Katsura-5 and -6 (total degree), cyclic-5 (total degree, 50 paths at infinity), and the
+3-cable DGP of seed 000 Test 1 (12 quadrics, 156 generic solutions) by a parameter homotopy from
+the stored generic complex instance ``cdpr_algebra/data/dgp3_generic.json`` to the robot data of
+``examples/seed000_test1.toml``; its 6 real solutions with non-negative tensions are checked against
+Table 1 (``tests/data/seed000_tables.json``, with the erratum x_O' = 2.751 of configuration 1).
+Times are medians of ``--runs`` runs (compilation excluded: systems are compiled once).
+
+``--phc`` also runs PHCpack's blackbox (``phc -b``) on the DGP instance if ``phc`` is installed
+(Debian package ``phcpack``); it is skipped otherwise. ``--regenerate`` recomputes the generic
+instance by monodromy (about 1.5 minutes) and rewrites the data file.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import sympy as sp
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from cdpr_algebra.robot import load_robot  # noqa: E402
+from cdpr_algebra.homotopy import SolveOptions, TrackerOptions, solve, solve_parameter_homotopy  # noqa: E402
+from cdpr_algebra.homotopy.families import cyclic, dgp3_family, dgp3_parameters, dgp3_poses, katsura  # noqa: E402
+from cdpr_algebra.homotopy.monodromy import MonodromyOptions, load_instance, monodromy_solve, save_instance  # noqa: E402
+
+DATA = ROOT / "cdpr_algebra" / "data" / "dgp3_generic.json"
+ROBOT = ROOT / "examples" / "seed000_test1.toml"
+# Parameter homotopies from a generic instance: every target path is nonsingular, so a looser
+# predictor tolerance is safe (the path-jumping check re-tracks any duplicate endpoint).
+FAST = SolveOptions(tracker=TrackerOptions(predictor_tol=1e-4))
+
+
+def dgp_family():
+    return dgp3_family()
+
+
+def regenerate(seed: int = 7):
+    S = dgp3_family()
+    robot = load_robot(ROBOT)
+    pr = dgp3_parameters(robot)
+    rng = np.random.default_rng(2024)
+    B = np.array([[3.5, 4, 5.5], [2.5, 4.5, 5.5], [2.5, 3.5, 5.5]]) + 0.3 * (rng.normal(size=(3, 3)) + 1j * rng.normal(size=(3, 3)))
+    x0 = np.concatenate([B.ravel(), 0.05 + 0.02 * (rng.normal(size=3) + 1j * rng.normal(size=3))])
+    pg = pr + 0.2 * (1 + abs(pr)) * (rng.normal(size=21) + 1j * rng.normal(size=21))
+    r = monodromy_solve(S, seed=seed, options=MonodromyOptions(), p_guess=pg, x0=x0)
+    print(r.summary_line())
+    save_instance(DATA, S, r.parameters, r.solutions,
+                  generated_by=f"benchmarks/bench_homotopy.py --regenerate (monodromy_solve seed {seed})",
+                  generic_count=156)
+
+
+def timed(fn, runs):
+    ts, out = [], None
+    for _ in range(runs):
+        t = time.perf_counter()
+        out = fn()
+        ts.append(time.perf_counter() - t)
+    return statistics.median(ts), out
+
+
+def table1_check(robot, result):
+    rows = json.loads((ROOT / "tests/data/seed000_tables.json").read_text())["tables"]["1"]["rows"]
+    X = np.array([s.x for s in result.solutions if s.is_real(1e-8) and not s.singular]).real
+    adm = X[np.all(X[:, 9:] >= 0, axis=1)] if len(X) else X
+    poses = dgp3_poses(robot, adm)
+    matched = 0
+    for row in rows:
+        d = [np.max(np.abs(p["position"] - np.array(row["position"]))) for p in poses]
+        matched += bool(d) and min(d) <= 5e-3
+    return len(X), len(adm), matched, len(rows)
+
+
+def phc_run(S, p, timeout=600):
+    phc = shutil.which("phc")
+    if not phc:
+        return None
+    names = [sp.Symbol(f"x{i + 1}") for i in range(S.n)]
+    sub = dict(zip(S.variables, names))
+    sub.update({s: sp.Float(float(np.real(v)), 17) for s, v in zip(S.parameters, p)})
+    lines = [f"{S.neq} {S.n}"]
+    for e in S.equations:
+        txt = str(sp.expand(e.xreplace(sub))).replace("**", "^")
+        lines.append(txt + ";")
+    with tempfile.TemporaryDirectory() as d:
+        inp, outp = Path(d) / "in.phc", Path(d) / "out.phc"
+        inp.write_text("\n".join(lines) + "\n")
+        t = time.perf_counter()
+        try:
+            subprocess.run([phc, "-b", str(inp), str(outp)], cwd=d, capture_output=True, timeout=timeout, check=False)
+        except subprocess.TimeoutExpired:
+            return {"wall": time.perf_counter() - t, "paths": None, "regular": None, "real": None, "timeout": True}
+        wall = time.perf_counter() - t
+        text = outp.read_text(errors="replace") if outp.exists() else ""
+    m = re.search(r"mixed volume\s*:\s*(\d+)", text)
+    paths = int(m.group(1)) if m else None
+    return {"wall": wall, "paths": paths, "regular": len(re.findall(r"regular ==", text)),
+            "real": len(re.findall(r"real regular ==", text)), "timeout": False}
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--phc", action="store_true", help="also run PHCpack's blackbox on the DGP instance")
+    ap.add_argument("--regenerate", action="store_true", help="recompute the generic DGP instance by monodromy")
+    args = ap.parse_args(argv)
+    if args.regenerate or not DATA.exists():
+        regenerate()
+    rows = []
+    for name, S in (("katsura5", katsura(5)), ("katsura6", katsura(6)), ("cyclic5", cyclic(5))):
+        solve(S, seed=0)  # compile
+        wall, r = timed(lambda: solve(S, seed=0), args.runs)
+        s = r.summary()
+        rows.append((name, "total degree", s.paths, f"{len(r.nonsingular)} (+{s.at_infinity} at inf)", wall))
+    S = dgp3_family()
+    p1, X1, _ = load_instance(DATA, S)
+    robot = load_robot(ROBOT)
+    p0 = dgp3_parameters(robot)
+    solve_parameter_homotopy(S, p1, X1[:2], p0)  # compile
+    wall, r = timed(lambda: solve_parameter_homotopy(S, p1, X1, p0, seed=0, options=FAST), args.runs)
+    s = r.summary()
+    rows.append(("DGP seed000 Test 1", "parameter (stored generic)", s.paths, f"{len(r.nonsingular)} ({s.failed} failed)", wall))
+    nreal, nadm, matched, nrows = table1_check(robot, r)
+    print(f"{'system':<20} {'homotopy':<28} {'paths':>6} {'solutions':>22} {'wall s':>8} {'paths/s':>9}")
+    for name, kind, paths, sols, w in rows:
+        print(f"{name:<20} {kind:<28} {paths:>6} {sols:>22} {w:>8.3f} {paths / w:>9.0f}")
+    print(f"DGP: {nreal} real, {nadm} with tensions >= 0; Table 1 poses matched: {matched}/{nrows}; "
+          f"median of {args.runs} runs; target <= 0.5 s: {'met' if rows[-1][4] <= 0.5 else 'NOT met'}")
+    if args.phc:
+        res = phc_run(S, p0)
+        if res is None:
+            print("phc: not installed (apt-get install -y phcpack); skipped")
+        else:
+            print(f"phc -b (PHCpack blackbox, polyhedral): paths {res['paths']}, regular {res['regular']}, "
+                  f"real regular {res['real']}, wall {res['wall']:.1f} s{' (TIMEOUT)' if res['timeout'] else ''}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,29 @@
+"""Homotopy continuation engine (issue #3): every isolated solution of a polynomial system.
+
+Flat topic modules, after HomotopyContinuation.jl:
+
+* :mod:`.systems` -- polynomial systems with parameters, compiled once into batched numpy evaluators;
+* :mod:`.homotopies` -- straight-line (gamma trick) and parameter homotopies;
+* :mod:`.tracker` -- vectorized RK4 / Newton path tracker, :func:`track_paths`;
+* :mod:`.endgame` -- Cauchy endgame, at-infinity test, Newton refinement, retries (double, mpmath);
+* :mod:`.start_systems` -- total degree, multi-homogeneous (linear product), parameter homotopy;
+* :mod:`.monodromy` -- generic solution sets from one seed point, saved/loaded instances;
+* :mod:`.results` -- immutable per-path and summary records;
+* :mod:`.solve` -- :func:`solve`, :func:`solve_parameter_homotopy`.
+"""
+
+from .systems import PolynomialSystem
+from .homotopies import ParameterHomotopy, StraightLineHomotopy
+from .tracker import TrackerOptions, track_paths, track_segment
+from .endgame import EndgameOptions, SolveOptions
+from .start_systems import (multi_homogeneous, multi_homogeneous_bezout_number, bezout_number, parameter_homotopy,
+                            total_degree)
+from .results import PathResult, Solution, SolveResult, Summary, TrackResult
+from .solve import group_solutions, solve, solve_parameter_homotopy
+
+__all__ = [
+    "PolynomialSystem", "ParameterHomotopy", "StraightLineHomotopy", "TrackerOptions", "track_paths", "track_segment",
+    "EndgameOptions", "SolveOptions", "multi_homogeneous", "multi_homogeneous_bezout_number", "bezout_number",
+    "parameter_homotopy", "total_degree", "PathResult", "Solution", "SolveResult", "Summary", "TrackResult",
+    "group_solutions", "solve", "solve_parameter_homotopy",
+]

@@ -1,0 +1,507 @@
+"""Endgame, refinement and retries: from tracked paths to classified endpoints.
+
+Pipeline (:func:`run_pipeline`, used by :func:`~.tracker.track_paths`), all vectorized across paths:
+
+1. track t = 1 -> ``endgame_start`` (0.1). Paths that fail are retried with tighter double-precision
+   settings, then by a scalar mpmath tracker (``mp_dps`` digits) before being reported failed.
+2. fast finish: track t = 0.1 -> 0 and refine by Newton on H(x, 0); an endpoint is ``success`` when
+   Newton converges quadratically to full double precision (last update <= ``refine_tol`` (1 + |x|))
+   and cond(dF/dx) <= ``singular_condition``.
+3. the other paths go through a Cauchy endgame from t = 0.1: samples at t_k = 0.1 * ratio^k; the
+   growth of log|x(t_k)| estimates the valuation v of the Puiseux expansion x ~ t^v; a stable
+   v < 0 (or |x| > ``at_infinity_norm``) means ``at_infinity``. Otherwise the path is looped
+   around t = 0 on the circle |t| = t_k (``samples_per_loop`` chords a loop) until it closes:
+   the number of loops is the winding number c, and by Cauchy's integral formula (trapezoid
+   rule in s = t^(1/c)) the mean of the c * samples_per_loop loop points estimates x(0). Two
+   successive radii agreeing to ``cauchy_tol`` end the endgame; c > 1 or an ill-conditioned
+   endpoint is ``singular``.
+4. path jumping: distinct paths must not end at the same nonsingular point; duplicates are
+   re-tracked from the start with tighter settings (then in mpmath). Endpoints still shared by
+   several paths (within ``cluster_tol``) are singular: their multiplicity is the path count.
+
+Everything is deterministic: randomness lives only in the start systems (seeded).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, asdict, replace
+
+import numpy as np
+
+from .results import (AT_INFINITY, DIVERGED, FAILURES, SINGULAR, STEP_TOO_SMALL, SUCCESS, TOO_MANY_STEPS,
+                      PathResult)
+from .tracker import TrackerOptions, _norm, _solve, track_segment
+
+__all__ = ["EndgameOptions", "SolveOptions", "run_pipeline", "refine", "cauchy_endgame", "mp_track"]
+
+
+@dataclass(frozen=True)
+class EndgameOptions:
+    """Endgame and refinement settings (defaults are the values used).
+
+    * ``endgame_start`` [0.1]: t where the endgame zone begins;
+    * ``sample_ratio`` [0.25]: t_{k+1} / t_k of the geometric samples;
+    * ``max_samples`` [12]: geometric samples before giving up (t down to ~ 6e-9);
+    * ``samples_per_loop`` [8], ``max_winding_number`` [16]: Cauchy loops;
+    * ``loop_closure_tol`` [1e-6]: relative distance at which a loop is closed;
+    * ``cauchy_tol`` [1e-9]: agreement of two successive Cauchy estimates;
+    * ``at_infinity_norm`` [1e8]: |x| beyond this in the endgame is at infinity;
+    * ``min_valuation`` [-0.02]: a stable valuation estimate below this is at infinity;
+    * ``singular_condition`` [1e10]: cond(dF/dx) beyond this is singular;
+    * ``refine_tol`` [1e-13]: last Newton update accepted as full double precision;
+    * ``finite_residual`` [1e-6]: a Cauchy estimate with a larger relative residual is not a finite
+      endpoint (the loop mean of a diverging Puiseux series is finite): the path is at infinity;
+    * ``cluster_tol`` [1e-6]: finite endpoints of several paths closer than this (relative) are one
+      singular solution whose multiplicity is the number of those paths.
+    """
+
+    endgame_start: float = 0.1
+    sample_ratio: float = 0.25
+    max_samples: int = 12
+    samples_per_loop: int = 8
+    max_winding_number: int = 16
+    loop_closure_tol: float = 1e-6
+    cauchy_tol: float = 1e-9
+    at_infinity_norm: float = 1e8
+    min_valuation: float = -0.02
+    singular_condition: float = 1e10
+    refine_tol: float = 1e-13
+    finite_residual: float = 1e-6
+    cluster_tol: float = 1e-6
+
+    def to_dict(self):
+        return asdict(self)
+
+
+@dataclass(frozen=True)
+class SolveOptions:
+    """All options of a run: ``tracker``, ``endgame``, and the retry policy.
+
+    * ``retry_tight`` [True]: retry failed / duplicate paths in double precision with
+      ``tracker.tightened()``;
+    * ``retry_mpmath`` [True], ``mp_dps`` [30], ``max_mpmath_paths`` [16]: then retry them with the
+      scalar mpmath tracker (at most that many paths, the rest are reported failed);
+    * ``check_path_jumping`` [True]: re-track paths whose nonsingular endpoints coincide;
+    * ``duplicate_tol`` [1e-8]: relative distance under which two endpoints coincide.
+    """
+
+    tracker: TrackerOptions = field(default_factory=TrackerOptions)
+    endgame: EndgameOptions = field(default_factory=EndgameOptions)
+    retry_tight: bool = True
+    retry_mpmath: bool = True
+    mp_dps: int = 30
+    max_mpmath_paths: int = 16
+    check_path_jumping: bool = True
+    duplicate_tol: float = 1e-8
+
+    def to_dict(self):
+        return {"tracker": self.tracker.to_dict(), "endgame": self.endgame.to_dict(), "retry_tight": self.retry_tight,
+                "retry_mpmath": self.retry_mpmath, "mp_dps": self.mp_dps, "max_mpmath_paths": self.max_mpmath_paths,
+                "check_path_jumping": self.check_path_jumping, "duplicate_tol": self.duplicate_tol}
+
+
+# ---------------------------------------------------------------------------------------------
+# refinement
+# ---------------------------------------------------------------------------------------------
+def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13):
+    """Newton on H(x, t) = 0 for every point. Returns (x, last_update, residual, condition, quadratic).
+
+    ``quadratic`` is True where Newton reached max(``tol``, 1e-15 cond) (1 + |x|): full double precision
+    for that condition number, which on a singular point (linear convergence) does not happen
+    within ``max_iter`` iterations.
+    """
+    x = np.array(x, dtype=complex, copy=True)
+    N = len(x)
+    tt = np.full(N, t, dtype=complex)
+    upd = np.full(N, np.inf)
+    active = np.arange(N)
+    prev = np.full(N, np.inf)
+    for _ in range(max_iter):
+        if not active.size:
+            break
+        H, Hx = homotopy.evaluate_and_jacobian(x[active], tt[active])
+        d = _solve(Hx, -H)
+        e = _norm(d) / (1 + _norm(x[active]))
+        good = np.isfinite(e)
+        # take the step unless Newton is diverging (update grew by > 2 from a small value)
+        take = good & ~((e > 2 * prev[active]) & (prev[active] < 1e-8))
+        x[active[take]] += d[take]
+        upd[active] = np.where(take, e, upd[active])
+        prev[active] = np.where(take, e, prev[active])
+        active = active[take & (e > tol)]
+    H, Hx = homotopy.evaluate_and_jacobian(x, tt)
+    res = np.max(np.abs(H), axis=1) / (1 + np.max(np.abs(x), axis=1))
+    with np.errstate(all="ignore"):
+        try:
+            cond = np.linalg.cond(Hx)
+        except np.linalg.LinAlgError:
+            cond = np.full(N, np.inf)
+    cond = np.where(np.isfinite(cond), cond, np.inf)
+    # full precision: the last update is at the round-off floor of a problem with that condition
+    floor = np.maximum(tol, 1e-15 * cond)
+    return x, upd, res, cond, upd <= floor
+
+
+# ---------------------------------------------------------------------------------------------
+# Cauchy endgame
+# ---------------------------------------------------------------------------------------------
+@dataclass
+class EndgameResult:
+    x: np.ndarray
+    status: np.ndarray
+    winding: np.ndarray
+    accuracy: np.ndarray
+    t: np.ndarray
+    steps: np.ndarray
+
+
+def _cauchy_loops(homotopy, x, r, o: EndgameOptions, tr: TrackerOptions):
+    """Loop each path around t = 0 on |t| = r until it closes. Returns (estimate, c, ok, steps)."""
+    N, n = x.shape
+    M = o.samples_per_loop
+    total = np.zeros((N, n), dtype=complex)
+    cnt = np.zeros(N, dtype=int)
+    wind = np.zeros(N, dtype=int)
+    ok = np.zeros(N, dtype=bool)
+    steps = np.zeros(N, dtype=int)
+    xcur = x.copy()
+    active = np.arange(N)
+    loop_tr = replace(tr, max_step=1.0)
+    hlast = np.full(N, 0.5)
+    j = 0
+    while active.size and j < M * o.max_winding_number:
+        a = active
+        ta = r[a] * np.exp(2j * np.pi * j / M)
+        tb = r[a] * np.exp(2j * np.pi * (j + 1) / M)
+        total[a] += xcur[a]
+        cnt[a] += 1
+        seg = track_segment(homotopy, xcur[a], ta, tb, loop_tr, h0=hlast[a])
+        hlast[a] = seg.h
+        steps[a] += seg.steps
+        xcur[a] = seg.x
+        fail = seg.status != SUCCESS
+        j += 1
+        keep = ~fail
+        if j % M == 0:
+            d = _norm(xcur[a] - x[a]) / (1 + _norm(x[a]))
+            closed = keep & (d <= o.loop_closure_tol)
+            ok[a[closed]] = True
+            wind[a[closed]] = j // M
+            keep &= ~closed
+        active = a[keep]
+    with np.errstate(all="ignore"):
+        est = total / np.maximum(cnt, 1)[:, None]
+    return est, wind, ok, steps
+
+
+def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions) -> EndgameResult:
+    """Power-series valuation test for divergence plus Cauchy-integral endgame (see module doc)."""
+    x = np.array(x, dtype=complex, copy=True)
+    N, n = x.shape
+    r = np.full(N, float(t0))
+    status = np.full(N, "", dtype=object)
+    xend = x.copy()
+    wind = np.ones(N, dtype=int)
+    acc = np.full(N, np.inf)
+    steps = np.zeros(N, dtype=int)
+    prev_est = np.full((N, n), np.nan + 0j)
+    lognorm = [np.log(np.max(np.abs(x), axis=1) + 1e-300)]
+    vals = []
+    active = np.arange(N)
+    for k in range(o.max_samples):
+        if not active.size:
+            break
+        a = active
+        seg = track_segment(homotopy, x[a], r[a], r[a] * o.sample_ratio, tr)
+        steps[a] += seg.steps
+        x[a] = seg.x
+        r[a] = np.where(seg.status == SUCCESS, r[a] * o.sample_ratio, np.abs(seg.t))
+        ln = np.full(N, np.nan)
+        ln[a] = np.log(np.max(np.abs(x[a]), axis=1) + 1e-300)
+        v = (ln - lognorm[-1]) / np.log(o.sample_ratio)
+        lognorm.append(ln)
+        vals.append(v)
+        big = np.max(np.abs(x[a]), axis=1) > o.at_infinity_norm
+        infl = big | (seg.status == DIVERGED)
+        if len(vals) >= 2:
+            v1, v0 = vals[-1][a], vals[-2][a]
+            stable = np.abs(v1 - v0) <= 0.1 * np.abs(v1) + 0.01
+            infl |= (v1 < o.min_valuation) & (v0 < o.min_valuation) & stable & (np.exp(ln[a]) > 10.0)
+        status[a[infl]] = AT_INFINITY
+        xend[a[infl]] = x[a[infl]]
+        acc[a[infl]] = np.nan
+        failed = (seg.status != SUCCESS) & ~infl
+        status[a[failed]] = seg.status[failed]
+        xend[a[failed]] = x[a[failed]]
+        a = a[~infl & ~failed]
+        if k == 0 or not a.size:
+            active = a
+            continue
+        est, c, ok, st = _cauchy_loops(homotopy, x[a], r[a], o, tr)
+        steps[a] += st
+        diff = _norm(est - prev_est[a]) / (1 + _norm(est))
+        prev_est[a] = np.where(ok[:, None], est, np.nan)
+        conv = ok & (diff <= o.cauchy_tol)
+        if conv.any():
+            # a finite limit must solve H(x, 0) = 0; a stable mean with a large residual is the constant
+            # term of a Puiseux series with negative exponents: the path diverges
+            Hc = homotopy.evaluate(est[conv], np.zeros(int(conv.sum()), dtype=complex))
+            resid = np.max(np.abs(Hc), axis=1) / (1 + np.max(np.abs(est[conv]), axis=1))
+            ci = np.flatnonzero(conv)
+            diverging = ci[~(resid <= o.finite_residual)]
+            conv[diverging] = False
+            status[a[diverging]] = AT_INFINITY
+            xend[a[diverging]] = x[a[diverging]]
+            acc[a[diverging]] = np.nan
+            wind[a[diverging]] = c[diverging]
+            ok[diverging] = False
+        xend[a[conv]] = est[conv]
+        wind[a[conv]] = c[conv]
+        acc[a[conv]] = diff[conv]
+        status[a[conv]] = SINGULAR  # provisional: finite endpoint, classified by the caller
+        # keep the best estimate so far in case the samples run out
+        better = ok & ~conv & (diff < acc[a])
+        xend[a[better]] = est[better]
+        acc[a[better]] = diff[better]
+        wind[a[better]] = c[better]
+        active = a[~conv & (status[a] == "")]
+    # out of samples: finite if the last estimate is decent, else step_too_small
+    for i in active:
+        if np.isfinite(acc[i]) and acc[i] <= 1e-5:
+            status[i] = SINGULAR
+        else:
+            status[i] = STEP_TOO_SMALL
+            xend[i] = x[i]
+    return EndgameResult(x=xend, status=status, winding=wind, accuracy=acc, t=r.astype(complex), steps=steps)
+
+
+# ---------------------------------------------------------------------------------------------
+# high-precision retry
+# ---------------------------------------------------------------------------------------------
+def mp_track(homotopy, x0, t_a, t_b, dps: int = 30, options: TrackerOptions | None = None):
+    """Scalar tracker in mpmath (``dps`` digits): the same RK4 + 2 Newton scheme as :func:`track_segment`.
+
+    Returns (x as complex128 array, status, steps). Slow (pure Python): only for the few retried paths.
+    """
+    import mpmath
+
+    o = options or TrackerOptions()
+    with mpmath.workdps(dps):
+        x = mpmath.matrix([mpmath.mpc(complex(v)) for v in x0])
+        ta, tb = mpmath.mpc(complex(t_a)), mpmath.mpc(complex(t_b))
+        dt = tb - ta
+        s, h = mpmath.mpf(0), mpmath.mpf(o.initial_step)
+        tol_p = mpmath.mpf(o.predictor_tol)
+        tol_c = mpmath.mpf(10) ** (-(dps - 8))
+        steps = 0
+
+        def nrm(v):
+            return mpmath.sqrt(sum(abs(c) ** 2 for c in v))
+
+        def f(xx, ss):
+            _, Hx, Ht = homotopy.mp_evaluate_all(xx, ta + ss * dt)
+            return mpmath.lu_solve(Hx, -Ht * dt)
+
+        while s < 1:
+            if steps >= o.max_steps * 4:
+                return np.array([complex(c) for c in x]), TOO_MANY_STEPS, steps
+            steps += 1
+            hh = min(h, 1 - s)
+            try:
+                k1 = f(x, s)
+                k2 = f(x + k1 * (hh / 2), s + hh / 2)
+                k3 = f(x + k2 * (hh / 2), s + hh / 2)
+                k4 = f(x + k3 * hh, s + hh)
+                xp = x + (k1 + 2 * k2 + 2 * k3 + k4) * (hh / 6)
+                tn = ta + (s + hh) * dt
+                d = []
+                xc = xp
+                for _ in range(3):
+                    H, Hx, _ = homotopy.mp_evaluate_all(xc, tn)
+                    dd = mpmath.lu_solve(Hx, -H)
+                    xc = xc + dd
+                    d.append(nrm(dd) / (1 + nrm(xc)))
+                okk = d[0] <= tol_p and d[2] <= max(tol_c, d[1] * o.max_contraction) and d[1] <= o.max_contraction * d[0] + tol_c
+            except (ZeroDivisionError, ValueError):
+                okk, d = False, [mpmath.inf]
+            if okk:
+                x, s = xc, s + hh
+                ratio = 0.9 * (tol_p / max(d[0], mpmath.mpf(10) ** -300)) ** 0.2
+                h = min(hh * min(max(ratio, 1), 2.5), o.max_step)
+            else:
+                h = hh * (0.25 if not mpmath.isfinite(d[0]) else min(max(0.9 * (tol_p / d[0]) ** 0.2, 0.1), 0.5))
+                if h < o.min_step * 1e-3:
+                    return np.array([complex(c) for c in x]), STEP_TOO_SMALL, steps
+            if nrm(x) > o.max_norm:
+                return np.array([complex(c) for c in x]), DIVERGED, steps
+        return np.array([complex(c) for c in x]), SUCCESS, steps
+
+
+# ---------------------------------------------------------------------------------------------
+# the pipeline
+# ---------------------------------------------------------------------------------------------
+def _track_to_endgame(homotopy, X0, idx, opts: SolveOptions, te, tr: TrackerOptions):
+    """Phase 1 for the paths ``idx``: t = 1 -> te, with retries. Returns (x, status, steps, retried)."""
+    seg = track_segment(homotopy, X0[idx], 1.0, te, tr)
+    x, status, steps = seg.x, seg.status.copy(), seg.steps.copy()
+    retried = np.full(len(idx), "", dtype=object)
+    bad = np.flatnonzero(status != SUCCESS)
+    if bad.size and opts.retry_tight:
+        seg2 = track_segment(homotopy, X0[idx[bad]], 1.0, te, tr.tightened())
+        x[bad], status[bad] = seg2.x, seg2.status
+        steps[bad] += seg2.steps
+        retried[bad] = "tight"
+        bad = bad[seg2.status != SUCCESS]
+    if bad.size and opts.retry_mpmath and hasattr(homotopy, "mp_evaluate_all"):
+        for i in bad[: opts.max_mpmath_paths]:
+            xm, st, ns = mp_track(homotopy, X0[idx[i]], 1.0, te, opts.mp_dps, tr)
+            steps[i] += ns
+            retried[i] = "mpmath"
+            if st == SUCCESS:
+                x[i], status[i] = xm, SUCCESS
+    return x, status, steps, retried
+
+
+def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions):
+    """Phases 2-3 for paths at t = te. Returns lists of per-path tuples."""
+    eo = opts.endgame
+    te = eo.endgame_start
+    N = len(x_te)
+    out_x = x_te.copy()
+    status = np.full(N, "", dtype=object)
+    wind = np.ones(N, dtype=int)
+    acc = np.full(N, np.inf)
+    tfin = np.zeros(N, dtype=complex)
+    seg = track_segment(homotopy, x_te, te, 0.0, tr)
+    steps = seg.steps.copy()
+    reached = seg.status == SUCCESS
+    xr, upd, res, cond, quad = refine(homotopy, seg.x[reached], 0.0, tol=eo.refine_tol)
+    good = quad & (cond <= eo.singular_condition)
+    gi = np.flatnonzero(reached)[good]
+    out_x[gi] = xr[good]
+    status[gi] = SUCCESS
+    acc[gi] = upd[good]
+    rest = np.flatnonzero(status == "")
+    if rest.size:
+        eg = cauchy_endgame(homotopy, x_te[rest], te, eo, tr)
+        steps[rest] += eg.steps
+        out_x[rest] = eg.x
+        status[rest] = eg.status
+        wind[rest] = eg.winding
+        acc[rest] = eg.accuracy
+        tfin[rest] = np.where(np.isin(eg.status, (SINGULAR,)), 0.0, eg.t)
+        fin = rest[eg.status == SINGULAR]
+        if fin.size:
+            # finite endpoints: winding number 1 and quadratic Newton -> nonsingular after all
+            xr, upd, res_, cond_, quad_ = refine(homotopy, out_x[fin], 0.0, tol=eo.refine_tol)
+            ns = (wind[fin] == 1) & quad_ & (cond_ <= eo.singular_condition)
+            out_x[fin[ns]] = xr[ns]
+            acc[fin[ns]] = upd[ns]
+            status[fin[ns]] = SUCCESS
+    return out_x, status, wind, acc, tfin, steps
+
+
+def _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried):
+    n = len(idx)
+    H, Hx = homotopy.evaluate_and_jacobian(x, np.zeros(n, dtype=complex))
+    with np.errstate(all="ignore"):
+        res = np.max(np.abs(H), axis=1) / (1 + np.max(np.abs(x), axis=1))
+        try:
+            cond = np.linalg.cond(Hx)
+        except np.linalg.LinAlgError:
+            cond = np.full(n, np.inf)
+    res = np.where(np.isfinite(res), res, np.inf)
+    cond = np.where(np.isfinite(cond), cond, np.inf)
+    out = []
+    for k, i in enumerate(idx):
+        out.append(PathResult(index=int(i), status=str(status[k]), endpoint=x[k], t=complex(tfin[k]),
+                              residual=float(res[k]), condition=float(cond[k]), accuracy=float(acc[k]),
+                              steps=int(steps[k]), winding_number=int(wind[k]), retried=str(retried[k])))
+    return out
+
+
+def _run(homotopy, X0, idx, opts: SolveOptions, tr: TrackerOptions):
+    te = opts.endgame.endgame_start
+    x, st1, steps, retried = _track_to_endgame(homotopy, X0, idx, opts, te, tr)
+    n = len(idx)
+    status = st1.copy()
+    wind = np.ones(n, dtype=int)
+    acc = np.full(n, np.inf)
+    tfin = np.full(n, te, dtype=complex)
+    ok = np.flatnonzero(st1 == SUCCESS)
+    if ok.size:
+        xo, so, wo, ao, to, sto = _finish(homotopy, x[ok], opts, tr)
+        x[ok], status[ok], wind[ok], acc[ok], tfin[ok] = xo, so, wo, ao, to
+        steps[ok] += sto
+    return _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried)
+
+
+def duplicate_groups(points: np.ndarray, tol: float) -> list:
+    """Groups (lists of row indices, size >= 2) of points closer than tol (1 + |x|) (max-norm)."""
+    if len(points) < 2:
+        return []
+    scale = 1 + np.max(np.abs(points), axis=1)
+    order = np.argsort(points[:, 0].real)
+    key = points[order, 0].real
+    parent = list(range(len(points)))
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    span = tol * (1 + np.max(np.abs(points)))
+    for a_ in range(len(order)):
+        b_ = a_ + 1
+        while b_ < len(order) and key[b_] - key[a_] <= span:
+            i, j = order[a_], order[b_]
+            if np.max(np.abs(points[i] - points[j])) <= tol * max(scale[i], scale[j]):
+                parent[find(i)] = find(j)
+            b_ += 1
+    groups = {}
+    for i in range(len(points)):
+        groups.setdefault(find(i), []).append(i)
+    return [g for g in groups.values() if len(g) > 1]
+
+
+def run_pipeline(homotopy, X0, opts: SolveOptions):
+    """All phases for all start points; returns a list of :class:`PathResult` in start order."""
+    N = len(X0)
+    idx = np.arange(N)
+    paths = _run(homotopy, X0, idx, opts, opts.tracker)
+    if opts.check_path_jumping and (opts.retry_tight or opts.retry_mpmath):
+        succ = [p for p in paths if p.status == SUCCESS]
+        if succ:
+            pts = np.array([p.endpoint for p in succ])
+            groups = duplicate_groups(pts, opts.duplicate_tol)
+            redo = sorted({succ[i].index for g in groups for i in g})
+            if redo:
+                tight = opts.tracker.tightened()
+                new = _run(homotopy, X0, np.array(redo), replace(opts, retry_tight=False), tight)
+                for p in new:
+                    paths[p.index] = replace(p, retried="tight")
+                # still duplicated: try mpmath on the later members of each group
+                succ = [p for p in paths if p.status == SUCCESS]
+                pts = np.array([p.endpoint for p in succ])
+                groups = duplicate_groups(pts, opts.duplicate_tol)
+                if groups and opts.retry_mpmath and hasattr(homotopy, "mp_evaluate_all"):
+                    redo = sorted({succ[i].index for g in groups for i in g[1:]})[: opts.max_mpmath_paths]
+                    for i in redo:
+                        xm, st, ns = mp_track(homotopy, X0[i], 1.0, opts.endgame.endgame_start, opts.mp_dps, tight)
+                        if st != SUCCESS:
+                            continue
+                        xo, so, wo, ao, to, sto = _finish(homotopy, xm[None, :], opts, tight)
+                        rec = _records(homotopy, np.array([i]), xo, so, wo, ao, to, sto + ns,
+                                       np.array(["mpmath"], dtype=object))[0]
+                        paths[i] = rec
+    # distinct paths of a homotopy that is regular for t in (0, 1] cannot meet at a nonsingular
+    # point (implicit function theorem): an endpoint shared by several paths is singular
+    fin = [p for p in paths if p.status in (SUCCESS, SINGULAR)]
+    if len(fin) > 1:
+        pts = np.array([p.endpoint for p in fin])
+        for g in duplicate_groups(pts, opts.endgame.cluster_tol):
+            for i in g:
+                if fin[i].status == SUCCESS:
+                    paths[fin[i].index] = replace(fin[i], status=SINGULAR)
+    return paths

@@ -1,0 +1,96 @@
+"""Top-level solves: start system + tracking + grouping of endpoints into distinct solutions.
+
+* :func:`solve` -- total-degree (default) or multi-homogeneous (``groups=``) homotopy for a system
+  (with its parameters fixed by ``parameters=``).
+* :func:`solve_parameter_homotopy` -- from a solved generic (complex) instance (p1, its solutions)
+  to target parameters p0 along the straight segment (optionally through a random complex detour
+  point, or with the gamma trick).
+* :func:`group_solutions` -- distinct finite solutions: nonsingular endpoints (tolerance
+  ``duplicate_tol``) and singular endpoints clustered (tolerance ``singular_tol``) into points
+  whose multiplicity is the number of paths ending there.
+
+Every run takes a ``seed`` (int) that is reported in the result and reproduces it exactly.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from .endgame import SolveOptions, duplicate_groups
+from .results import FAILURES, SINGULAR, SUCCESS, Solution, SolveResult, TrackResult
+from .start_systems import multi_homogeneous, parameter_homotopy, random_gamma, total_degree
+from .systems import PolynomialSystem
+from .tracker import track_paths
+
+__all__ = ["solve", "solve_parameter_homotopy", "group_solutions"]
+
+
+def group_solutions(track: TrackResult, duplicate_tol: float = 1e-8, singular_tol: float = 1e-6) -> tuple:
+    """Distinct finite solutions of a :class:`TrackResult` (see module doc)."""
+    sols = []
+    for status, tol in ((SUCCESS, duplicate_tol), (SINGULAR, singular_tol)):
+        paths = [p for p in track.paths if p.status == status]
+        if not paths:
+            continue
+        pts = np.array([p.endpoint for p in paths])
+        groups = duplicate_groups(pts, tol)
+        seen = set(i for g in groups for i in g)
+        groups += [[i] for i in range(len(paths)) if i not in seen]
+        for g in sorted(groups, key=lambda g: g[0]):
+            ps = [paths[i] for i in g]
+            x = np.mean([p.endpoint for p in ps], axis=0)
+            sols.append(Solution(x=x, multiplicity=len(g) if status == SINGULAR else len(g),
+                                 singular=status == SINGULAR or len(g) > 1,
+                                 residual=max(p.residual for p in ps), condition=max(p.condition for p in ps),
+                                 accuracy=max(p.accuracy for p in ps), paths=tuple(p.index for p in ps)))
+    return tuple(sols)
+
+
+def solve(system: PolynomialSystem, parameters=None, groups=None, seed: int = 0,
+          options: SolveOptions | None = None) -> SolveResult:
+    """All isolated solutions of a square system by a total-degree or multi-homogeneous homotopy."""
+    options = options or SolveOptions()
+    rng = np.random.default_rng(seed)
+    gamma = random_gamma(rng)
+    if groups is None:
+        start = total_degree(system)
+    else:
+        start = multi_homogeneous(system, groups, seed=int(rng.integers(2**31)))
+    hom = start.homotopy(system, gamma, parameters)
+    tr = track_paths(hom, start.solutions, options, seed=seed)
+    sols = group_solutions(tr, options.duplicate_tol, options.endgame.cluster_tol)
+    return SolveResult(solutions=sols, track=tr, start_system=start.kind)
+
+
+def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_solutions, target_parameters,
+                             seed: int = 0, options: SolveOptions | None = None, detour: bool = False,
+                             gamma: bool = False) -> SolveResult:
+    """Track the solutions of F(x; p1) = 0 to F(x; p0) = 0 (see :func:`.start_systems.parameter_homotopy`)."""
+    options = options or SolveOptions()
+    rng = np.random.default_rng(seed)
+    t0 = time.perf_counter()
+    homs = parameter_homotopy(system, start_parameters, target_parameters, rng=rng, detour=detour, gamma=gamma)
+    X = np.asarray(start_solutions, dtype=complex)
+    paths = None
+    for k, hom in enumerate(homs):
+        last = k == len(homs) - 1
+        if paths is None:
+            tr = track_paths(hom, X, options, seed=seed)
+            paths = list(tr.paths)
+        else:
+            live = [i for i, p in enumerate(paths) if p.status == SUCCESS]
+            tr = track_paths(hom, np.array([paths[i].endpoint for i in live]).reshape(len(live), system.n), options, seed=seed)
+            for j, i in enumerate(live):
+                q = tr.paths[j]
+                paths[i] = type(q)(index=i, status=q.status, endpoint=q.endpoint, t=q.t, residual=q.residual,
+                                   condition=q.condition, accuracy=q.accuracy, steps=q.steps + paths[i].steps,
+                                   winding_number=q.winding_number, retried=q.retried or paths[i].retried)
+        if not last:
+            # an intermediate (generic) endpoint that is not nonsingular cannot be continued
+            for i, p in enumerate(paths):
+                if p.status not in (SUCCESS,) + FAILURES:
+                    paths[i] = type(p)(**{**p.__dict__, "status": "diverged"})
+    track = TrackResult(paths=tuple(paths), seconds=time.perf_counter() - t0, seed=seed, options=options.to_dict())
+    return SolveResult(solutions=group_solutions(track, options.duplicate_tol, options.endgame.cluster_tol), track=track, start_system="parameter")

@@ -1,0 +1,200 @@
+"""Path tracker: RK4 predictor, Newton corrector, adaptive step size, all paths vectorized.
+
+Method. Along a straight segment t(s) = t_a + s (t_b - t_a), s in [0, 1] (t complex, per path),
+a path solves H(x(s), t(s)) = 0, hence dx/ds = -H_x^{-1} H_t (t_b - t_a). One step of size h:
+
+1. predictor: classical Runge-Kutta (RK4) on that ODE (4 batched linear solves);
+2. corrector: two Newton iterations at t(s + h), updates d1 and d2;
+3. accept when the predictor error |d1| <= ``predictor_tol`` (1 + |x|) and Newton contracts
+   (|d2| <= ``max_contraction`` |d1|, or both are below 1e-9 / 1e-10: round-off level) and |d2| <= ``corrector_tol`` (1 + |x|);
+   or, on an ill-conditioned stretch, when a third Newton update shows stagnation at the round-off
+   floor (<= ``noise_tol``);
+4. next step h * clip(0.9 (predictor_tol / |d1|)^(1/5), ...): the RK4 local error is O(h^5), so this
+   keeps the predictor error near the tolerance; rejected steps shrink by at least 2.
+
+All active paths step together: every stage is one call of the compiled evaluator on
+(npaths, n) points and one ``np.linalg.solve`` on (npaths, n, n). Paths that reach s = 1 or fail
+leave the active set. Failures: ``step_too_small`` (h < ``min_step``), ``too_many_steps``,
+``diverged`` (|x| > ``max_norm`` or a non-finite value).
+
+:func:`track_paths` runs the whole pipeline (tracking, endgame, refinement, retries, path-jumping
+check); it is in this module so that ``track_paths(homotopy, start_solutions, options)`` is the one
+entry point, and delegates to :mod:`.endgame`.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, asdict, replace
+
+import numpy as np
+
+from .results import DIVERGED, STEP_TOO_SMALL, SUCCESS, TOO_MANY_STEPS
+
+__all__ = ["TrackerOptions", "SegmentResult", "track_segment", "track_paths"]
+
+RUNNING = ""
+
+
+@dataclass(frozen=True)
+class TrackerOptions:
+    """Step control of :func:`track_segment` (defaults in brackets are the values used).
+
+    * ``initial_step`` [0.05]: first step as a fraction of the segment;
+    * ``max_step`` [0.25]: largest step as a fraction of the segment;
+    * ``min_step`` [1e-13]: below this the path fails with ``step_too_small``;
+    * ``max_steps`` [3000]: accepted + rejected steps per path and segment;
+    * ``predictor_tol`` [1e-5]: accepted size of the first Newton update, relative to 1 + |x|;
+    * ``corrector_tol`` [1e-8]: accepted size of the last Newton update, relative to 1 + |x|;
+    * ``max_contraction`` [0.2]: |d2| / |d1| must not exceed this (Newton is converging);
+    * ``max_norm`` [1e10]: |x| beyond this is ``diverged``;
+    * ``noise_tol`` [1e-6]: a step whose Newton updates stagnate (third update <= 2 x second) below this
+      is accepted as limited by round-off (ill-conditioned stretch of a path).
+    """
+
+    initial_step: float = 0.05
+    max_step: float = 0.25
+    min_step: float = 1e-13
+    max_steps: int = 3000
+    predictor_tol: float = 1e-5
+    corrector_tol: float = 1e-8
+    max_contraction: float = 0.2
+    max_norm: float = 1e10
+    noise_tol: float = 1e-6
+
+    def tightened(self, factor: float = 100.0) -> "TrackerOptions":
+        """Stricter settings for re-tracking suspicious paths."""
+        return replace(self, predictor_tol=self.predictor_tol / factor, max_step=self.max_step / 5,
+                       initial_step=self.initial_step / 5, max_contraction=min(self.max_contraction, 0.1),
+                       max_steps=self.max_steps * 4, min_step=self.min_step / 10)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+@dataclass
+class SegmentResult:
+    """Arrays over the paths of one :func:`track_segment` call."""
+
+    x: np.ndarray  # (N, n) last point
+    s: np.ndarray  # (N,) fraction of the segment reached
+    t: np.ndarray  # (N,) complex t reached
+    status: np.ndarray  # (N,) object: SUCCESS or a failure code
+    steps: np.ndarray  # (N,) int
+    h: np.ndarray  # (N,) last step (fraction of the segment)
+
+
+def _norm(v):
+    return np.sqrt(np.einsum("ij,ij->i", v.real, v.real) + np.einsum("ij,ij->i", v.imag, v.imag))
+
+
+def _solve(A, b):
+    """Batched solve A x = b for b of shape (N, n); singular matrices give non-finite rows."""
+    try:
+        return np.linalg.solve(A, b[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        out = np.full(b.shape, np.nan + 0j)
+        for i in range(len(A)):
+            try:
+                out[i] = np.linalg.solve(A[i], b[i])
+            except np.linalg.LinAlgError:
+                pass
+        return out
+
+
+def track_segment(homotopy, x0, t_a, t_b, options: TrackerOptions | None = None, h0=None) -> SegmentResult:
+    """Track every path from t_a to t_b (arrays of shape (N,) or scalars), vectorized across paths."""
+    o = options or TrackerOptions()
+    x = np.array(x0, dtype=complex, copy=True)
+    N, n = x.shape
+    t_a = np.broadcast_to(np.asarray(t_a, dtype=complex), (N,)).copy()
+    t_b = np.broadcast_to(np.asarray(t_b, dtype=complex), (N,)).copy()
+    dt = t_b - t_a
+    s = np.zeros(N)
+    h = np.full(N, o.initial_step) if h0 is None else np.clip(np.broadcast_to(h0, (N,)).astype(float), o.min_step, o.max_step)
+    steps = np.zeros(N, dtype=int)
+    status = np.full(N, RUNNING, dtype=object)
+    active = np.flatnonzero(dt != 0)
+    status[dt == 0] = SUCCESS
+    ev = homotopy.evaluate_all
+    evj = homotopy.evaluate_and_jacobian
+
+    def f(xx, ss, a):
+        _, Hx, Ht = ev(xx, t_a[a] + ss * dt[a])
+        return _solve(Hx, -Ht * dt[a][:, None])
+
+    while active.size:
+        a = active
+        xa, sa = x[a], s[a]
+        ha = np.minimum(h[a], 1.0 - sa)
+        hc = ha[:, None]
+        k1 = f(xa, sa, a)
+        k2 = f(xa + 0.5 * hc * k1, sa + 0.5 * ha, a)
+        k3 = f(xa + 0.5 * hc * k2, sa + 0.5 * ha, a)
+        k4 = f(xa + hc * k3, sa + ha, a)
+        xp = xa + (hc / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+        sn = sa + ha
+        tn = t_a[a] + sn * dt[a]
+        H, Hx = evj(xp, tn)
+        d1 = _solve(Hx, -H)
+        x1 = xp + d1
+        H, Hx = evj(x1, tn)
+        d2 = _solve(Hx, -H)
+        x2 = x1 + d2
+        scale = 1.0 + _norm(x2)
+        e1 = _norm(d1) / scale
+        e2 = _norm(d2) / scale
+        finite = np.isfinite(e1) & np.isfinite(e2)
+        # contraction is only measurable above round-off: a predictor within 1e-9 needs no such test
+        contracting = (e2 <= o.max_contraction * e1) | ((e1 <= 1e-9) & (e2 <= 1e-10))
+        ok = finite & (e1 <= o.predictor_tol) & contracting & (e2 <= o.corrector_tol)
+        # round-off floor: on an ill-conditioned stretch Newton stagnates at cond * eps instead of
+        # contracting; a third iteration that does not move away either (e3 <= 2 e2 <= 2 noise_tol)
+        # shows that the point is as accurate as double precision allows: accept it
+        cand = np.flatnonzero(finite & ~ok & (e1 <= o.predictor_tol) & (e2 <= o.noise_tol))
+        if cand.size:
+            H3, Hx3 = evj(x2[cand], tn[cand])
+            d3 = _solve(Hx3, -H3)
+            e3 = _norm(d3) / scale[cand]
+            floor = np.isfinite(e3) & (e3 <= 2.0 * e2[cand]) & (e3 <= o.noise_tol)
+            ok[cand[floor]] = True
+            x2[cand[floor]] += d3[floor]
+        steps[a] += 1
+        # accepted
+        acc = a[ok]
+        x[acc] = x2[ok]
+        s[acc] = np.where(sn[ok] >= 1.0 - 1e-15, 1.0, sn[ok])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = 0.9 * (o.predictor_tol / np.maximum(e1, 1e-300)) ** 0.2
+        grow = np.clip(ratio, 1.0, 2.5)
+        shrink = np.where(finite, np.clip(ratio, 0.1, 0.5), 0.25)
+        hn = np.where(ok, np.minimum(ha * grow, o.max_step), ha * shrink)
+        # keep a grown step after a final short step to the end
+        h[a] = np.where(ok & (ha < h[a]), np.maximum(h[a], hn), hn)
+        done = s[a] >= 1.0
+        status[a[done]] = SUCCESS
+        big = ok & (scale > o.max_norm)
+        status[a[big & ~done]] = DIVERGED
+        small = ~ok & (h[a] < o.min_step)
+        status[a[small]] = STEP_TOO_SMALL
+        many = (status[a] == RUNNING) & (steps[a] >= o.max_steps)
+        status[a[many]] = TOO_MANY_STEPS
+        active = a[status[a] == RUNNING]
+    t = t_a + s * dt
+    return SegmentResult(x=x, s=s, t=t, status=status, steps=steps, h=h)
+
+
+def track_paths(homotopy, start_solutions, options=None, seed=None):
+    """Track every start solution of ``homotopy`` to t = 0, run the endgame and classify each path.
+
+    ``options`` is a :class:`~.endgame.SolveOptions` (or None for its defaults). Returns a
+    :class:`~.results.TrackResult`. See :func:`.endgame.run_pipeline` for the pipeline.
+    """
+    from .endgame import SolveOptions, run_pipeline
+
+    options = options or SolveOptions()
+    t0 = time.perf_counter()
+    paths = run_pipeline(homotopy, np.asarray(start_solutions, dtype=complex), options)
+    from .results import TrackResult
+
+    return TrackResult(paths=tuple(paths), seconds=time.perf_counter() - t0, seed=seed, options=options.to_dict())
