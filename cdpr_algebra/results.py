@@ -6,26 +6,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .jsonable import jsonable as _jsonable
+
 from .pose import angles_from_matrix, euler_parameters_from_matrix, matrix_from_euler_parameters
 from .stability import hessian_class, reduced_hessian
 from .statics import equilibrium_tensions
-
-
-def _jsonable(v):
-    """Floats as floats, complex as [re, im] pairs, arrays as nested lists."""
-    if isinstance(v, np.ndarray):
-        return [_jsonable(x) for x in v]
-    if isinstance(v, (list, tuple)):
-        return [_jsonable(x) for x in v]
-    if isinstance(v, (complex, np.complexfloating)):
-        return float(v.real) if v.imag == 0 else [float(v.real), float(v.imag)]
-    if isinstance(v, (np.floating, float)):
-        return float(v)
-    if isinstance(v, (np.integer,)):
-        return int(v)
-    if isinstance(v, np.bool_):
-        return bool(v)
-    return v
 
 
 @dataclass(frozen=True)

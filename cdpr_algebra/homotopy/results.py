@@ -20,6 +20,8 @@ from typing import Optional
 
 import numpy as np
 
+from ..jsonable import jsonable as _jsonable
+
 SUCCESS = "success"
 SINGULAR = "singular"
 AT_INFINITY = "at_infinity"
@@ -28,24 +30,6 @@ TOO_MANY_STEPS = "too_many_steps"
 DIVERGED = "diverged"
 FAILURES = (STEP_TOO_SMALL, TOO_MANY_STEPS, DIVERGED)
 STATUSES = (SUCCESS, SINGULAR, AT_INFINITY) + FAILURES
-
-
-def _jsonable(v):
-    if isinstance(v, np.ndarray):
-        return [_jsonable(x) for x in v]
-    if isinstance(v, (list, tuple)):
-        return [_jsonable(x) for x in v]
-    if isinstance(v, (complex, np.complexfloating)):
-        return [float(v.real), float(v.imag)]
-    if isinstance(v, np.floating):
-        return float(v)
-    if isinstance(v, np.integer):
-        return int(v)
-    if isinstance(v, np.bool_):
-        return bool(v)
-    if isinstance(v, dict):
-        return {k: _jsonable(x) for k, x in v.items()}
-    return v
 
 
 @dataclass(frozen=True)
