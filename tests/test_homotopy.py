@@ -210,14 +210,14 @@ def test_dgp_parameter_homotopy_table1(dgp):
 
 
 def test_parameter_homotopy_20_random_points_generic_count(dgp):
-    """20 random real robots near seed 000 Test 1 (each parameter moved by 2 % of its scale): always
-    156 nonsingular solutions, 0 failed. (With 10 % moves 2 of 20 targets still lose 2 paths: see
-    the issue report; the mpmath retry is off here because it takes minutes per 12-unknown path.)"""
+    """20 random real robots around seed 000 Test 1 (each parameter moved by 5 % of its scale): always
+    156 nonsingular solutions, 0 failed (failed or coinciding paths are re-tracked through a new random
+    complex detour; the mpmath retry is off here because it takes minutes per 12-unknown path)."""
     S, p1, X1, robot = dgp
     base = dgp3_parameters(robot)
     rng = np.random.default_rng(12)
     for k in range(20):
-        p0 = base + 0.02 * (1 + np.abs(base)) * rng.normal(size=base.size)
+        p0 = base + 0.05 * (1 + np.abs(base)) * rng.normal(size=base.size)
         r = solve_parameter_homotopy(S, p1, X1, p0, seed=k, options=NO_MP)
         s = r.summary()
         assert (len(r.nonsingular), s.failed, s.singular) == (156, 0, 0), (k, r.summary_line())
@@ -284,3 +284,4 @@ def test_stored_dgp_instance_matches_family(dgp):
     assert np.max(np.abs(S.evaluate(X1, p1))) < 1e-8
     assert np.iscomplexobj(p1) and np.max(np.abs(p1.imag)) > 0.01  # a generic complex instance
     assert len({tuple(np.round(x, 6)) for x in X1}) == 156
+

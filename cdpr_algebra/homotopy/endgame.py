@@ -106,6 +106,9 @@ class SolveOptions:
 def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13):
     """Newton on H(x, t) = 0 for every point. Returns (x, last_update, residual, condition, quadratic).
 
+    ``condition`` is the 2-norm condition number of dF/dx with columns scaled by max(1, |x_j|) and rows
+    normalized (invariant to the scale of each equation and of large coordinates).
+
     ``quadratic`` is True where Newton reached max(``tol``, 1e-15 cond) (1 + |x|): full double precision
     for that condition number, which on a singular point (linear convergence) does not happen
     within ``max_iter`` iterations.
@@ -133,7 +136,11 @@ def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13):
     res = np.max(np.abs(H), axis=1) / (1 + np.max(np.abs(x), axis=1))
     with np.errstate(all="ignore"):
         try:
-            cond = np.linalg.cond(Hx)
+            # scaled condition number: columns by max(1, |x_j|), rows to unit norm, so a regular solution
+            # with large coordinates (far from the origin, not at infinity) is not mistaken for a singular one
+            Hs = Hx * np.maximum(1.0, np.abs(x))[:, None, :]
+            Hs = Hs / np.maximum(np.linalg.norm(Hs, axis=2, keepdims=True), 1e-300)
+            cond = np.linalg.cond(Hs)
         except np.linalg.LinAlgError:
             cond = np.full(N, np.inf)
     cond = np.where(np.isfinite(cond), cond, np.inf)

@@ -45,7 +45,7 @@ class PathResult:
     accuracy: float  # estimated error of the endpoint (last Newton update or endgame estimate difference)
     steps: int  # accepted + rejected steps, all phases
     winding_number: int = 1
-    retried: str = ""  # "", "tight" (double precision, tighter settings) or "mpmath"
+    retried: str = ""  # "", "tight" (double precision, tighter settings), "mpmath" or "detour" (new random path)
 
     def __post_init__(self):
         ep = np.array(self.endpoint, dtype=complex)

@@ -15,11 +15,13 @@ Every run takes a ``seed`` (int) that is reported in the result and reproduces i
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 import numpy as np
 
 from .endgame import SolveOptions, duplicate_groups
-from .results import FAILURES, SINGULAR, SUCCESS, Solution, SolveResult, TrackResult
+from .projective import from_chart, projectivize, to_chart
+from .results import AT_INFINITY, FAILURES, SINGULAR, SUCCESS, Solution, SolveResult, TrackResult
 from .start_systems import multi_homogeneous, parameter_homotopy, random_gamma, total_degree
 from .systems import PolynomialSystem
 from .tracker import track_paths
@@ -64,15 +66,8 @@ def solve(system: PolynomialSystem, parameters=None, groups=None, seed: int = 0,
     return SolveResult(solutions=sols, track=tr, start_system=start.kind)
 
 
-def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_solutions, target_parameters,
-                             seed: int = 0, options: SolveOptions | None = None, detour: bool = False,
-                             gamma: bool = False) -> SolveResult:
-    """Track the solutions of F(x; p1) = 0 to F(x; p0) = 0 (see :func:`.start_systems.parameter_homotopy`)."""
-    options = options or SolveOptions()
-    rng = np.random.default_rng(seed)
-    t0 = time.perf_counter()
-    homs = parameter_homotopy(system, start_parameters, target_parameters, rng=rng, detour=detour, gamma=gamma)
-    X = np.asarray(start_solutions, dtype=complex)
+def _track_segments(system, homs, X, options, seed):
+    """Track X through consecutive parameter segments; per-path records (steps summed over segments)."""
     paths = None
     for k, hom in enumerate(homs):
         last = k == len(homs) - 1
@@ -92,5 +87,61 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
             for i, p in enumerate(paths):
                 if p.status not in (SUCCESS,) + FAILURES:
                     paths[i] = type(p)(**{**p.__dict__, "status": "diverged"})
+    return paths
+
+
+def _suspects(paths, tol):
+    """Failed paths, singular endpoints reached with winding number 1 (ill-conditioned in affine coordinates,
+    e.g. of large norm), and successful paths that end on the same point as another one (path jumping)."""
+    bad = {i for i, p in enumerate(paths) if p.status in FAILURES or (p.status == SINGULAR and p.winding_number == 1)}
+    ok = [i for i, p in enumerate(paths) if p.status == SUCCESS]
+    if len(ok) > 1:
+        for g in duplicate_groups(np.array([paths[i].endpoint for i in ok]), tol):
+            if len(g) > 1:
+                bad.update(ok[j] for j in g)
+    return sorted(bad)
+
+
+def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_solutions, target_parameters,
+                             seed: int = 0, options: SolveOptions | None = None, detour: bool = False,
+                             gamma: bool = False, retries: int = 3) -> SolveResult:
+    """Track the solutions of F(x; p1) = 0 to F(x; p0) = 0 (see :func:`.start_systems.parameter_homotopy`).
+
+    Paths that fail, or that end on the same point as another path (a sign of path jumping), are tracked
+    again from their start points in projective coordinates (:mod:`.projective`) through a fresh random
+    complex detour, with step control tightened 10x, 100x, ... from the second round on, up to ``retries``
+    rounds; a path
+    keeps the first successful, distinct endpoint it reaches (``retried`` says it was re-run).
+    """
+    options = options or SolveOptions()
+    rng = np.random.default_rng(seed)
+    t0 = time.perf_counter()
+    X = np.asarray(start_solutions, dtype=complex)
+    homs = parameter_homotopy(system, start_parameters, target_parameters, rng=rng, detour=detour, gamma=gamma)
+    paths = _track_segments(system, homs, X, options, seed)
+    if retries:
+        proj, chart = projectivize(system)
+    for round_ in range(retries):
+        redo = _suspects(paths, options.duplicate_tol)
+        if not redo:
+            break
+        # re-track in projective coordinates (large-norm solutions become ordinary points of a random chart)
+        homs = parameter_homotopy(proj, start_parameters, target_parameters, rng=rng, detour=True)
+        tight = replace(options, tracker=options.tracker.tightened(10.0 ** round_)) if round_ else options
+        again = _track_segments(proj, homs, to_chart(X[redo], chart), tight, seed + 1 + round_)
+        for i, q in zip(redo, again):
+            x, finite = from_chart(q.endpoint[None, :])
+            status = q.status
+            if status == SUCCESS and finite[0] < 1e-10:
+                status = AT_INFINITY
+            # regularity is judged in the chart, where a large-norm solution is well conditioned
+            q = type(q)(**{**q.__dict__, "endpoint": x[0]})
+            candidate = type(q)(**{**q.__dict__, "index": i, "status": status, "retried": "projective"})
+            others = np.array([paths[j].endpoint for j in range(len(paths)) if j != i and paths[j].status == SUCCESS])
+            distinct = not len(others) or not np.any(
+                np.max(np.abs(others - candidate.endpoint), axis=1)
+                <= options.duplicate_tol * (1 + np.max(np.abs(candidate.endpoint))))
+            if (status == SUCCESS and distinct) or (paths[i].status in FAILURES and status not in FAILURES):
+                paths[i] = candidate
     track = TrackResult(paths=tuple(paths), seconds=time.perf_counter() - t0, seed=seed, options=options.to_dict())
     return SolveResult(solutions=group_solutions(track, options.duplicate_tol, options.endgame.cluster_tol), track=track, start_system="parameter")
