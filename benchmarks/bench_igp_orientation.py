@@ -8,8 +8,6 @@ Newton polish, tensions, H_r class), the exact-rational mode on Table 1, and the
 """
 
 import argparse
-import statistics
-import time
 from pathlib import Path
 
 import numpy as np
@@ -18,17 +16,9 @@ from scipy.spatial.transform import Rotation
 
 from cdpr_algebra import load_robot
 from cdpr_algebra.igp_orientation import exact_solution, igp_orientation, igp_orientation_batch
+from timing import median_time  # benchmarks/timing.py (the script folder is on sys.path)
 
 ROOT = Path(__file__).resolve().parent.parent
-
-
-def median_time(fn, repeat):
-    times = []
-    for _ in range(repeat):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return statistics.median(times)
 
 
 def main():

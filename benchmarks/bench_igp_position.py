@@ -12,8 +12,6 @@ Prints the median over ``--runs`` calls of:
 """
 
 import argparse
-import statistics
-import time
 from pathlib import Path
 
 import numpy as np
@@ -22,19 +20,10 @@ from cdpr_algebra import load_robot
 from cdpr_algebra.igp_position import dialytic_determinant, igp_position, solve_euler_parameters
 from cdpr_algebra.pose import matrix_from_euler_parameters
 from cdpr_algebra.results import make_solutions
+from timing import median_time  # benchmarks/timing.py (the script folder is on sys.path)
 
 ROOT = Path(__file__).resolve().parent.parent
 X = [7.0, 9.0, 1.0]
-
-
-def median_time(fn, runs):
-    fn()  # warm up
-    times = []
-    for _ in range(runs):
-        t = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t)
-    return statistics.median(times)
 
 
 def main():
