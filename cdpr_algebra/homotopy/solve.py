@@ -127,7 +127,7 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
             break
         # re-track in projective coordinates (large-norm solutions become ordinary points of a random chart)
         homs = parameter_homotopy(proj, start_parameters, target_parameters, rng=rng, detour=True)
-        tight = replace(options, tracker=options.tracker.tightened(10.0 ** round_)) if round_ else options
+        tight = replace(options, tracker=options.tracker.tightened(10.0 ** (round_ + 1)))
         again = _track_segments(proj, homs, to_chart(X[redo], chart), tight, seed + 1 + round_)
         for i, q in zip(redo, again):
             x, finite = from_chart(q.endpoint[None, :])
