@@ -9,9 +9,14 @@ the stored generic complex instance ``cdpr_algebra/data/dgp3_generic.json`` to t
 Table 1 (``tests/data/seed000_tables.json``, with the erratum x_O' = 2.751 of configuration 1).
 Times are medians of ``--runs`` runs (compilation excluded: systems are compiled once).
 
-``--phc`` also runs PHCpack's blackbox (``phc -b``) on the DGP instance if ``phc`` is installed
-(Debian package ``phcpack``); it is skipped otherwise. ``--regenerate`` recomputes the generic
-instance by monodromy (about 1.5 minutes) and rewrites the data file.
+``--phc`` also runs PHCpack's blackbox (``phc -b``) on every system if ``phc`` is installed (Debian package
+``phcpack``); ``--bertini PYTHON`` runs Bertini 2 (PyPI package ``bertini``, total-degree start, Cauchy
+endgame, double precision) with that interpreter (e.g. a venv with ``pip install bertini``) on every system;
+``--peer-dgp`` includes the DGP for the peers (slow: PHCpack tracks 1984 paths, Bertini 4096). Peer endpoints
+are counted only after our own evaluation of the equations confirms them (residual <= 1e-8 relative):
+Bertini's parser is known to misread a leading "- " (../shared/PEERS.md), so equations are written with
+every term in parentheses. ``--regenerate`` recomputes the generic instance by monodromy (about 1.5
+minutes) and rewrites the data file.
 """
 
 from __future__ import annotations
@@ -89,13 +94,8 @@ def phc_run(S, p, timeout=600):
     phc = shutil.which("phc")
     if not phc:
         return None
-    names = [sp.Symbol(f"x{i + 1}") for i in range(S.n)]
-    sub = dict(zip(S.variables, names))
-    sub.update({s: sp.Float(float(np.real(v)), 17) for s, v in zip(S.parameters, p)})
-    lines = [f"{S.neq} {S.n}"]
-    for e in S.equations:
-        txt = str(sp.expand(e.xreplace(sub))).replace("**", "^")
-        lines.append(txt + ";")
+    _, eqs = _peer_equations(S, p)
+    lines = [f"{S.neq} {S.n}"] + [e + ";" for e in eqs]
     with tempfile.TemporaryDirectory() as d:
         inp, outp = Path(d) / "in.phc", Path(d) / "out.phc"
         inp.write_text("\n".join(lines) + "\n")
@@ -112,20 +112,76 @@ def phc_run(S, p, timeout=600):
             "real": len(re.findall(r"real regular ==", text)), "timeout": False}
 
 
+def _peer_equations(S, p, power="^"):
+    """Equations with parameters substituted, every term in parentheses (no leading unary minus)."""
+    names = [sp.Symbol(f"x{i + 1}") for i in range(S.n)]
+    sub = dict(zip(S.variables, names))
+    sub.update({s: sp.Float(float(np.real(v)), 17) for s, v in zip(S.parameters, p)})
+    out = []
+    for e in S.equations:
+        terms = sp.Add.make_args(sp.expand(e.xreplace(sub)))
+        out.append(" + ".join("(" + str(t).replace("**", power) + ")" for t in terms))
+    return [str(n) for n in names], out
+
+
+_BERTINI_SCRIPT = r"""
+import json, sys, time
+import bertini
+d = json.load(sys.stdin)
+text = "variable_group " + ", ".join(d["vars"]) + "; function " + ", ".join(f"f{i}" for i in range(len(d["eqs"]))) + "; "
+text += " ".join(f"f{i} = {e};" for i, e in enumerate(d["eqs"]))
+t = time.perf_counter()
+alg = bertini.nag_algorithm.ZeroDimCauchyDoublePrecisionTotalDegree(bertini.parse.system(text))
+alg.solve()
+wall = time.perf_counter() - t
+sols = [[[complex(z).real, complex(z).imag] for z in (s[i] for i in range(len(d["vars"]) + 1))] for s in alg.solutions()]
+print(json.dumps({"wall": wall, "solutions": sols}))
+"""
+
+
+def bertini_run(S, p, python, timeout=1800):
+    """Bertini 2 on F(x; p) = 0 in another interpreter; finite endpoints verified with our evaluator."""
+    names, eqs = _peer_equations(S, p)
+    try:
+        proc = subprocess.run([python, "-c", _BERTINI_SCRIPT], input=json.dumps({"vars": names, "eqs": eqs}),
+                              capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return {"wall": timeout, "paths": None, "finite": None, "timeout": True}
+    if proc.returncode != 0:
+        return {"error": proc.stderr.strip().splitlines()[-1] if proc.stderr.strip() else "failed"}
+    out = json.loads(proc.stdout)
+    Y = np.array([[complex(a, b) for a, b in s] for s in out["solutions"]])
+    finite = np.abs(Y[:, 0]) > 1e-8 * np.abs(Y).max(axis=1)
+    X = Y[finite, 1:] / Y[finite, :1]
+    F = S.evaluate(X, np.asarray(p, dtype=complex)) if len(X) else np.zeros((0, S.neq))
+    ok = np.max(np.abs(F), axis=1) <= 1e-8 * (1 + np.max(np.abs(X), axis=1)) if len(X) else np.zeros(0, bool)
+    distinct = 0
+    kept = []
+    for x in X[ok]:
+        if not any(np.max(np.abs(x - k)) <= 1e-6 * (1 + np.max(np.abs(x))) for k in kept):
+            kept.append(x)
+            distinct += 1
+    return {"wall": out["wall"], "paths": len(Y), "finite": distinct, "timeout": False}
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=5)
-    ap.add_argument("--phc", action="store_true", help="also run PHCpack's blackbox on the DGP instance")
+    ap.add_argument("--phc", action="store_true", help="also run PHCpack's blackbox (phc -b) on the systems")
+    ap.add_argument("--bertini", metavar="PYTHON", help="also run Bertini 2 with this interpreter (has 'bertini')")
+    ap.add_argument("--peer-dgp", action="store_true", help="include the DGP for the peers (minutes)")
     ap.add_argument("--regenerate", action="store_true", help="recompute the generic DGP instance by monodromy")
     args = ap.parse_args(argv)
     if args.regenerate or not DATA.exists():
         regenerate()
     rows = []
+    peer_systems = []
     for name, S in (("katsura5", katsura(5)), ("katsura6", katsura(6)), ("cyclic5", cyclic(5))):
         solve(S, seed=0)  # compile
         wall, r = timed(lambda: solve(S, seed=0), args.runs)
         s = r.summary()
         rows.append((name, "total degree", s.paths, f"{len(r.nonsingular)} (+{s.at_infinity} at inf)", wall))
+        peer_systems.append((name, S, np.zeros(0)))
     S = dgp3_family()
     p1, X1, _ = load_instance(DATA, S)
     robot = load_robot(ROBOT)
@@ -134,19 +190,29 @@ def main(argv=None):
     wall, r = timed(lambda: solve_parameter_homotopy(S, p1, X1, p0, seed=0, options=FAST), args.runs)
     s = r.summary()
     rows.append(("DGP seed000 Test 1", "parameter (stored generic)", s.paths, f"{len(r.nonsingular)} ({s.failed} failed)", wall))
+    if args.peer_dgp:
+        peer_systems.append(("DGP seed000 Test 1", S, p0))
     nreal, nadm, matched, nrows = table1_check(robot, r)
     print(f"{'system':<20} {'homotopy':<28} {'paths':>6} {'solutions':>22} {'wall s':>8} {'paths/s':>9}")
     for name, kind, paths, sols, w in rows:
         print(f"{name:<20} {kind:<28} {paths:>6} {sols:>22} {w:>8.3f} {paths / w:>9.0f}")
     print(f"DGP: {nreal} real, {nadm} with tensions >= 0; Table 1 poses matched: {matched}/{nrows}; "
           f"median of {args.runs} runs; target <= 0.5 s: {'met' if rows[-1][4] <= 0.5 else 'NOT met'}")
-    if args.phc:
-        res = phc_run(S, p0)
-        if res is None:
-            print("phc: not installed (apt-get install -y phcpack); skipped")
-        else:
-            print(f"phc -b (PHCpack blackbox, polyhedral): paths {res['paths']}, regular {res['regular']}, "
-                  f"real regular {res['real']}, wall {res['wall']:.1f} s{' (TIMEOUT)' if res['timeout'] else ''}")
+    for name, S, p in peer_systems if (args.phc or args.bertini) else ():
+        if args.phc:
+            res = phc_run(S, p)
+            if res is None:
+                print(f"{name:<20} phc: not installed (apt-get install -y phcpack); skipped")
+            else:
+                print(f"{name:<20} phc -b (PHCpack blackbox): mixed volume {res['paths']}, regular {res['regular']}, "
+                      f"real regular {res['real']}, wall {res['wall']:.1f} s{' (TIMEOUT)' if res['timeout'] else ''}")
+        if args.bertini:
+            res = bertini_run(S, p, args.bertini)
+            if "error" in res:
+                print(f"{name:<20} Bertini 2: {res['error']}")
+            else:
+                print(f"{name:<20} Bertini 2 (total degree, double precision): paths {res['paths']}, distinct finite "
+                      f"verified {res['finite']}, wall {res['wall']:.1f} s{' (TIMEOUT)' if res['timeout'] else ''}")
 
 
 if __name__ == "__main__":
