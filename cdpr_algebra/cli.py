@@ -2,6 +2,7 @@
 
     cdpr igp ROBOT --orientation PHI_X PHI_Y PHI_Z [--degrees] [--exact] [--json]
     cdpr igp ROBOT --position X Y Z [--all] [--json]
+    cdpr dgp ROBOT [--lengths L1 .. Ln] [--jobs N] [--json]
 
 Exit status: 0 on success, 2 on bad input (one line on stderr naming the field and the problem).
 """
@@ -51,6 +52,12 @@ def build_parser() -> argparse.ArgumentParser:
                           "multiples of 90 degrees)")
     igp.add_argument("--all", action="store_true", help="also list complex solutions (assigned position)")
     igp.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    dgp = sub.add_parser("dgp", help="direct geometrico-static problem: every equilibrium, every set of taut cables")
+    dgp.add_argument("robot", help="robot file (.json or .toml)")
+    dgp.add_argument("--lengths", nargs="+", type=_finite("--lengths"), metavar="L",
+                     help="cable lengths rho_1 .. rho_n (default: the robot file's)")
+    dgp.add_argument("--jobs", type=int, default=None, help="worker processes (default: all cores)")
+    dgp.add_argument("--json", action="store_true", help="print JSON instead of a table")
     return p
 
 
@@ -102,12 +109,46 @@ def _run_igp(args) -> int:
     return 0
 
 
+def _run_dgp(args) -> int:
+    from .dgp import dgp, dgp_table
+    from .robot import load_robot
+
+    robot = load_robot(args.robot)
+    if args.lengths is not None:
+        if len(args.lengths) != robot.n:
+            raise CdprInputError("--lengths", f"expected {robot.n} cable lengths, got {len(args.lengths)}")
+        if any(v <= 0 for v in args.lengths):
+            raise CdprInputError("--lengths", "cable lengths must be > 0")
+        lengths = np.array(args.lengths)
+    elif robot.lengths is not None:
+        lengths = robot.lengths
+    else:
+        raise CdprInputError("--lengths", "no cable lengths: the robot file has none and --lengths is not given")
+    if args.jobs is not None and args.jobs < 1:
+        raise CdprInputError("--jobs", f"expected a number >= 1, got {args.jobs}")
+
+    def progress(sub, done, total):
+        what = f"skipped ({sub.skipped})" if sub.skipped else \
+            f"{sub.paths} paths, {sub.real} real, {sub.admissible} admissible, {sub.failed_paths} failed"
+        print(f"[{done}/{total}] taut {list(sub.taut)}: {what}, {sub.seconds:.2f} s", file=sys.stderr, flush=True)
+
+    result = dgp(robot, lengths, jobs=args.jobs, progress=progress)
+    if args.json:
+        print(json.dumps(result.to_dict(), indent=2))
+    else:
+        print(f"{robot.name}: DGP, lengths {', '.join(f'{v:g}' for v in lengths)}")
+        print(dgp_table(result, robot.n))
+    return 0
+
+
 def main(argv=None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
         if args.command == "igp":
             return _run_igp(args)
+        if args.command == "dgp":
+            return _run_dgp(args)
     except CdprInputError as err:
         print(f"cdpr: error: {err}", file=sys.stderr)
         return 2

@@ -1,0 +1,526 @@
+"""Direct geometrico-static problem (DGP, issue 4): every equilibrium of an n-cable robot with given cable
+lengths, over every set of taut cables with m = 1 .. min(n, 6) cables.
+
+Per taut set S (a *subproblem*, cables 1-based in reports):
+
+* **m = 1**: analytic (:mod:`.dgp_one_cable`, seed 000 Sec. 3.2); the platform may still turn about the
+  cable, the reported pose is the middle of the widest feasible arc.
+* **m = 2 .. 6**: parameter homotopy (:func:`.homotopy.solve.solve_parameter_homotopy`, which re-tracks
+  failed or coinciding paths itself) from the stored generic solution set of :func:`.dgp_equations.taut_family`
+  (``cdpr_algebra/data/dgp_generic_m{m}.json``, made by ``derivations/solve_generic_dgp.py``) to the robot's
+  parameters.  Subproblems whose m has no stored set are reported as skipped.  The robot is first normalized
+  to the scale of the stored sets: base centred at the centroid c of the exit points, world frame turned by
+  Rw so that the load acts along -z, lengths divided by L = ``robot.size``, load Q d replaced by -z; then
+  p = c + L Rw^T p^, R = Rw^T R^, lam = Q lam^ / L, tau_i = lam_i rho_i.
+  Tracking is a fast first pass (vectorized evaluators :class:`FastTautSystem`, no retries); a path failing in
+  the endgame zone (|t| <= 0.1) beyond 1000 robot sizes (|x| > ``DIVERGED_NORM`` in normalized coordinates,
+  while every admissible equilibrium has |x| < ~10) is counted as diverging to a solution at infinity (special
+  geometries, e.g. coplanar base and platform, have some), not as failed.  Any other suspect path (failed, or
+  ending on another path's endpoint) makes the subproblem re-run with the engine's retries (projective
+  re-tracking through random detours, tightened steps).  If failed paths remain, the subproblem is re-run once
+  with a random gamma and another seed and the run with fewer failures is kept; remaining failures are
+  reported (``failed_paths``), never hidden.
+
+**Pruning** (seed 000 Sec. 4.1, recorded as the ``skipped`` reason): with D_ij = |A_i - A_j| and
+d_ij = |b_i' - b_j'|, every pair of cables needs D_ij <= rho_i + rho_j + d_ij (B_i and B_j lie within
+rho_i, rho_j of A_i, A_j: taut or slack); two taut cables also need |rho_i - rho_j| <= D_ij + d_ij
+(B_i on the sphere (A_i, rho_i) must reach outside the ball (A_j, rho_j - d_ij)).
+
+**Filtering** of the finite endpoints (after two real Newton steps on the normalized system):
+real (imaginary parts <= 1e-6 in the normalized, unit-size coordinates); a proper rotation
+(|R^T R - I| <= 1e-6, det R > 0); tensions tau_i >= -tol with tol = 1e-9 Q; every other cable slack:
+|B_j - A_j| <= rho_j (1 + 1e-9).  Stability: class of the reduced Hessian (:mod:`.stability`), stable = '>'.
+
+**Deduplication rule.** An equilibrium is reported once, in the subproblem with the fewest taut cables:
+a solution of subproblem S with a tension |tau_i| <= tol is not reported by S (it is the solution of
+S minus {i}, whose subproblem reports it: there cable i is exactly at its length, which passes the slack
+test).  As a safety net, admissible solutions of different subproblems with the same pose (within
+1e-7 L) are merged, keeping the one with fewer taut cables.
+"""
+
+from __future__ import annotations
+
+import itertools
+import multiprocessing
+import os
+import sys
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .dgp_equations import decode, encode, taut_family, taut_parameters
+from .dgp_one_cable import one_cable_equilibria
+from .jsonable import jsonable
+from .pose import angles_from_matrix
+from .stability import hessian_class, reduced_hessian
+
+__all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune"]
+
+DATA = Path(__file__).resolve().parent / "data"
+REAL_TOL = 1e-6
+SLACK_TOL = 1e-9
+TENSION_RTOL = 1e-9
+_GENERIC: dict = {}
+
+
+def generic_path(m: int) -> Path:
+    return DATA / f"dgp_generic_m{m}.json"
+
+
+def available_m() -> list[int]:
+    """The m (2..6) with a stored generic solution set."""
+    return [m for m in range(2, 7) if generic_path(m).exists()]
+
+
+def _generic(m: int):
+    if m not in _GENERIC:
+        from .homotopy.monodromy import load_instance
+
+        p, X, _ = load_instance(generic_path(m), taut_family(m))
+        _GENERIC[m] = (p, X)
+    return _GENERIC[m]
+
+
+@dataclass(frozen=True)
+class DGPSolution:
+    """One admissible equilibrium. ``taut`` is 1-based; ``tensions`` has n values (0 for slack cables)."""
+
+    taut: tuple
+    position: np.ndarray
+    rotation: np.ndarray
+    tensions: np.ndarray
+    hessian: str
+    certified: bool | None = None
+
+    @property
+    def angles(self) -> np.ndarray:
+        return angles_from_matrix(self.rotation)
+
+    @property
+    def stable(self) -> bool:
+        return self.hessian == ">"
+
+    def to_dict(self) -> dict:
+        return {"taut": list(self.taut), "position": jsonable(self.position), "angles": jsonable(self.angles),
+                "rotation": jsonable(self.rotation), "tensions": jsonable(self.tensions), "hessian": self.hessian,
+                "stable": self.stable, "certified": self.certified}
+
+
+@dataclass(frozen=True)
+class DGPSubproblem:
+    taut: tuple  # 1-based
+    paths: int
+    finite: int
+    real: int
+    admissible: int
+    failed_paths: int
+    seconds: float
+    skipped: str | None = None
+
+    def to_dict(self) -> dict:
+        return {"taut": list(self.taut), "paths": self.paths, "finite": self.finite, "real": self.real,
+                "admissible": self.admissible, "failed_paths": self.failed_paths, "seconds": self.seconds,
+                "skipped": self.skipped}
+
+
+@dataclass(frozen=True)
+class DGPResult:
+    solutions: tuple
+    subproblems: tuple
+    seconds: float
+
+    @property
+    def stable(self) -> tuple:
+        return tuple(s for s in self.solutions if s.stable)
+
+    def by_m(self, m: int) -> tuple:
+        return tuple(s for s in self.solutions if len(s.taut) == m)
+
+    def to_dict(self) -> dict:
+        return {"solutions": [s.to_dict() for s in self.solutions],
+                "subproblems": [s.to_dict() for s in self.subproblems], "seconds": self.seconds}
+
+
+# ---------------------------------------------------------------------------------------------
+def _skew(v):
+    """skew(v) for v (..., 3) -> (..., 3, 3)."""
+    S = np.zeros(v.shape + (3,), dtype=v.dtype)
+    S[..., 0, 1] = -v[..., 2]
+    S[..., 0, 2] = v[..., 1]
+    S[..., 1, 0] = v[..., 2]
+    S[..., 1, 2] = -v[..., 0]
+    S[..., 2, 0] = -v[..., 1]
+    S[..., 2, 1] = v[..., 0]
+    return S
+
+
+class FastTautSystem:
+    """:func:`.dgp_equations.taut_family` (m) with hand-written vectorized evaluators of F, dF/dx, dF/dp (the
+    same equations in the same order; checked against the compiled sympy evaluators in tests/test_dgp.py).
+    Everything else (name, hash, equations, mpmath evaluators, used by the projective retries) is the
+    sympy family's."""
+
+    def __init__(self, m: int):
+        self.family = taut_family(m)
+        self.mm = m
+        self.n = self.family.n
+        self.m = self.family.m
+        self.neq = self.family.neq
+
+    def __getattr__(self, name):
+        return getattr(self.family, name)
+
+    def _unpack(self, x, p):
+        m = self.mm
+        x = np.asarray(x, dtype=complex)
+        if x.ndim == 1:
+            x = x[None, :]
+        N = len(x)
+        p = np.broadcast_to(np.asarray(p, dtype=complex), (N, self.m))
+        A = p[:, :3 * m].reshape(N, m, 3)
+        r2 = p[:, 3 * m:4 * m]
+        b = p[:, 4 * m:7 * m].reshape(N, m, 3)
+        g = p[:, 7 * m:7 * m + 3]
+        f = p[:, 7 * m + 3:7 * m + 6]
+        P, u, v, w, lam = x[:, 0:3], x[:, 3:6], x[:, 6:9], x[:, 9:12], x[:, 12:12 + m]
+        return N, A, r2, b, g, f, P, u, v, w, lam
+
+    def _eval(self, x, p, jac: bool, jacp: bool):
+        m = self.mm
+        N, A, r2, b, g, f, P, u, v, w, lam = self._unpack(x, p)
+        Rm = np.stack([u, v, w], axis=-1)  # (N, 3, 3) columns u, v, w
+        B = P[:, None, :] + np.einsum("nkc,nmc->nmk", Rm, b)  # (N, m, 3)
+        G = P + np.einsum("nkc,nc->nk", Rm, g)
+        s = B - A
+        F = np.empty((N, self.neq), dtype=complex)
+        F[:, 0] = np.einsum("nk,nk->n", u, u) - 1
+        F[:, 1] = np.einsum("nk,nk->n", v, v) - 1
+        F[:, 2] = np.einsum("nk,nk->n", u, v)
+        from .statics import cross
+
+        uv = cross(u, v)
+        F[:, 3:6] = w - uv
+        F[:, 6:6 + m] = np.einsum("nmk,nmk->nm", s, s) - r2
+        F[:, 6 + m:9 + m] = -np.einsum("nm,nmk->nk", lam, s) + f
+        BA = cross(B, A)  # (N, m, 3)
+        F[:, 9 + m:12 + m] = cross(G, f) + np.einsum("nm,nmk->nk", lam, BA)
+        if not jac:
+            return F, None, None
+        J = np.zeros((N, self.neq, self.n), dtype=complex)
+        J[:, 0, 3:6] = 2 * u
+        J[:, 1, 6:9] = 2 * v
+        J[:, 2, 3:6] = v
+        J[:, 2, 6:9] = u
+        J[:, 3:6, 3:6] = _skew(v)
+        J[:, 3:6, 6:9] = -_skew(u)
+        J[:, 3:6, 9:12] = np.eye(3)
+        # lengths: dE_i/dp = 2 s_i, dE_i/d(u, v, w) = 2 b_ic s_i
+        J[:, 6:6 + m, 0:3] = 2 * s
+        for c in range(3):
+            J[:, 6:6 + m, 3 + 3 * c:6 + 3 * c] = 2 * b[:, :, c, None] * s
+        # force: -sum lam_i (B_i - A_i) + f
+        sl = lam.sum(axis=1)
+        lb = np.einsum("nm,nmc->nc", lam, b)  # (N, 3)
+        eye = np.eye(3)
+        J[:, 6 + m:9 + m, 0:3] = -sl[:, None, None] * eye
+        for c in range(3):
+            J[:, 6 + m:9 + m, 3 + 3 * c:6 + 3 * c] = -lb[:, c, None, None] * eye
+        J[:, 6 + m:9 + m, 12:12 + m] = -np.swapaxes(s, 1, 2)
+        # moment: G x f + sum lam_i B_i x A_i; d(G x f)/dG = -[f]x, d(B x A)/dB = -[A]x
+        Sf = _skew(f)  # (N, 3, 3)
+        SA = _skew(A)
+        lSA = np.einsum("nm,nmij->nij", lam, SA)
+        J[:, 9 + m:12 + m, 0:3] = -Sf - lSA
+        for c in range(3):
+            J[:, 9 + m:12 + m, 3 + 3 * c:6 + 3 * c] = -g[:, c, None, None] * Sf - np.einsum(
+                "nm,nmij->nij", lam * b[:, :, c], SA)
+        J[:, 9 + m:12 + m, 12:12 + m] = np.swapaxes(BA, 1, 2)
+        if not jacp:
+            return F, J, None
+        JP = np.zeros((N, self.neq, self.m), dtype=complex)
+        ia, ir, ib, ig, i_f = 0, 3 * m, 4 * m, 7 * m, 7 * m + 3
+        SB = _skew(B)
+        for i in range(m):
+            # lengths
+            JP[:, 6 + i, ia + 3 * i:ia + 3 * i + 3] = -2 * s[:, i]
+            JP[:, 6 + i, ir + i] = -1
+            JP[:, 6 + i, ib + 3 * i:ib + 3 * i + 3] = 2 * np.einsum("nkc,nk->nc", Rm, s[:, i])
+            # force
+            JP[:, 6 + m:9 + m, ia + 3 * i:ia + 3 * i + 3] = lam[:, i, None, None] * eye
+            JP[:, 6 + m:9 + m, ib + 3 * i:ib + 3 * i + 3] = -lam[:, i, None, None] * Rm
+            # moment
+            JP[:, 9 + m:12 + m, ia + 3 * i:ia + 3 * i + 3] = lam[:, i, None, None] * SB[:, i]
+            JP[:, 9 + m:12 + m, ib + 3 * i:ib + 3 * i + 3] = -lam[:, i, None, None] * (SA[:, i] @ Rm)
+        JP[:, 6 + m:9 + m, i_f:i_f + 3] = eye
+        JP[:, 9 + m:12 + m, ig:ig + 3] = -Sf @ Rm
+        JP[:, 9 + m:12 + m, i_f:i_f + 3] = _skew(G)
+        return F, J, JP
+
+    def evaluate(self, x, p=None):
+        return self._eval(x, p, False, False)[0]
+
+    def evaluate_and_jacobian(self, x, p=None):
+        F, J, _ = self._eval(x, p, True, False)
+        return F, J
+
+    def evaluate_all(self, x, p=None):
+        return self._eval(x, p, True, True)
+
+
+_FAST: dict = {}
+
+
+def fast_family(m: int) -> FastTautSystem:
+    if m not in _FAST:
+        _FAST[m] = FastTautSystem(m)
+    return _FAST[m]
+
+
+def prune(robot, rho, cables) -> str | None:
+    """Reason why the taut set ``cables`` (0-based) cannot hold an equilibrium, or None (see module doc)."""
+    A, b = robot.base, robot.platform
+    n = robot.n
+    for i in range(n):
+        for j in range(i + 1, n):
+            D = np.linalg.norm(A[i] - A[j])
+            d = np.linalg.norm(b[i] - b[j])
+            if D > (rho[i] + rho[j] + d) * (1 + 1e-12):
+                return (f"cables {i + 1} and {j + 1} cannot reach each other's anchor: |A{i + 1}A{j + 1}| = {D:.6g} > "
+                        f"rho{i + 1} + rho{j + 1} + |b{i + 1}'b{j + 1}'| = {rho[i] + rho[j] + d:.6g}")
+    for i, j in itertools.combinations(cables, 2):
+        D = np.linalg.norm(A[i] - A[j])
+        d = np.linalg.norm(b[i] - b[j])
+        if abs(rho[i] - rho[j]) > (D + d) * (1 + 1e-12) + 1e-12 * robot.size:
+            return (f"cables {i + 1} and {j + 1} cannot both be taut: |rho{i + 1} - rho{j + 1}| = {abs(rho[i] - rho[j]):.6g}"
+                    f" > |A{i + 1}A{j + 1}| + |b{i + 1}'b{j + 1}'| = {D + d:.6g}")
+    return None
+
+
+def _normalized(robot, rho, cables):
+    """(parameters of the normalized problem, c, L, Rw): world coordinates x' = Rw (x - c) / L with Rw taking the
+    load direction to -z (the direction of the stored generic sets: a straight parameter path from there never
+    passes near a vanishing load), load 1."""
+    from .dgp_one_cable import _rotation_taking
+
+    c = robot.base.mean(axis=0)
+    L = robot.size
+    Rw = _rotation_taking(robot.load_direction, np.array([0.0, 0.0, -1.0]))
+    idx = list(cables)
+    params = np.concatenate([((robot.base[idx] - c) @ Rw.T / L).ravel(), (rho[idx] / L) ** 2,
+                             (robot.platform[idx] / L).ravel(), robot.com / L, [0.0, 0.0, -1.0]])
+    return params, c, L, Rw
+
+
+def _slack_ok(robot, rho, cables, p, R) -> bool:
+    others = [j for j in range(robot.n) if j not in cables]
+    if not others:
+        return True
+    B = p + robot.platform[others] @ R.T
+    dist = np.linalg.norm(B - robot.base[others], axis=1)
+    return bool(np.all(dist <= rho[others] * (1 + SLACK_TOL)))
+
+
+def _classify(robot, rho, cables, p, R, tau):
+    idx = list(cables)
+    B = p + robot.platform[idx] @ R.T
+    G = p + R @ robot.com
+    L = robot.size
+    Hr = reduced_hessian(robot.base[idx], B, G, tau, rho[idx], length_scale=L)
+    scale = float(np.sum(np.abs(tau) / rho[idx]) + robot.load / L)
+    return hessian_class(Hr, scale)
+
+
+def _solve_one_cable(robot, rho, i):
+    t0 = time.perf_counter()
+    tol = TENSION_RTOL * robot.load
+    # candidates: 4 (2 when G lies on the cable line through B_i); report those with an admissible turning angle
+    dist = np.linalg.norm(robot.com - robot.platform[i])
+    candidates = 4 if dist > 1e-12 * robot.size else 2
+    sols = []
+    for e in one_cable_equilibria(robot, i, rho):
+        if e.tension < -tol:
+            continue
+        tau = np.zeros(robot.n)
+        tau[i] = e.tension
+        cls = _classify(robot, rho, [i], e.position, e.rotation, np.array([e.tension]))
+        sols.append(DGPSolution((i + 1,), np.array(e.position), np.array(e.rotation), tau, cls))
+    sub = DGPSubproblem((i + 1,), candidates, candidates, candidates, len(sols), 0, time.perf_counter() - t0)
+    return sub, sols
+
+
+DIVERGED_NORM = 1e3  # normalized coordinates: the robot has size 1, every admissible equilibrium has |x| < ~10
+
+
+def _track(fam, m, target, seed, gamma):
+    """Parameter homotopy from the stored generic set. A first pass without retries; a path that fails with
+    |x| > DIVERGED_NORM (a thousand robot sizes) in the endgame zone is counted as diverging (going to a solution
+    at infinity, which special geometries such as coplanar bases and platforms have), not as failed. If any other
+    path is suspect (failed, or ending on the same point as another), the subproblem is re-run with the engine's
+    retries (projective re-tracking through a random detour, tightened steps)."""
+    from .homotopy.endgame import SolveOptions
+    from .homotopy.results import FAILURES
+    from .homotopy.solve import _suspects, solve_parameter_homotopy
+
+    p_gen, X_gen = _generic(m)
+    # no in-place double / mpmath retries (slow); solve_parameter_homotopy re-tracks suspect paths in
+    # projective coordinates, where paths to infinity end there
+    options = SolveOptions(retry_tight=False, retry_mpmath=False)
+    res = solve_parameter_homotopy(fast_family(m), p_gen, X_gen, target, seed=seed, gamma=gamma, options=options,
+                                   retries=0)
+
+    def diverging(p):
+        return p.status in FAILURES and abs(p.t) <= 0.1 + 1e-12 and np.max(np.abs(p.endpoint)) > DIVERGED_NORM
+
+    suspects = [i for i in _suspects(res.track.paths, options.duplicate_tol) if not diverging(res.track.paths[i])]
+    if suspects:
+        res = solve_parameter_homotopy(fast_family(m), p_gen, X_gen, target, seed=seed, gamma=gamma,
+                                       options=options)
+    failed = sum(1 for p in res.track.paths if p.status in FAILURES and not diverging(p))
+    return res, failed
+
+
+def _solve_subproblem(robot, rho, cables, seed: int = 0):
+    """(DGPSubproblem, [DGPSolution]) for the 0-based taut set ``cables`` (pruning, tracking, filtering)."""
+    t0 = time.perf_counter()
+    cables = tuple(cables)
+    taut1 = tuple(c + 1 for c in cables)
+    m = len(cables)
+    reason = prune(robot, rho, cables)
+    if reason is not None:
+        return DGPSubproblem(taut1, 0, 0, 0, 0, 0, time.perf_counter() - t0, reason), []
+    if m == 1:
+        return _solve_one_cable(robot, rho, cables[0])
+    if not generic_path(m).exists():
+        return DGPSubproblem(taut1, 0, 0, 0, 0, 0, time.perf_counter() - t0,
+                             f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})"), []
+    fam = taut_family(m)
+    target, c, L, Rw = _normalized(robot, rho, cables)
+    res, failed = _track(fam, m, target, seed, gamma=False)
+    if failed:
+        res2, failed2 = _track(fam, m, target, seed + 7919, gamma=True)
+        if failed2 < failed:
+            res, failed = res2, failed2
+    X = np.array([s.x for s in res.solutions]).reshape(-1, fam.n)
+    finite = len(X)
+    real = np.all(np.abs(X.imag) <= REAL_TOL * (1 + np.abs(X.real)), axis=1) if finite else np.zeros(0, bool)
+    Xr = X[real].real
+    for _ in range(2):  # real Newton polish
+        if not len(Xr):
+            break
+        F, J, _ = fam.evaluate_all(Xr.astype(complex), target)
+        try:
+            Xr = Xr - np.linalg.solve(J.real, F.real[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            break
+    tol = TENSION_RTOL * robot.load
+    sols = []
+    idx = list(cables)
+    for x in Xr:
+        ph, R, lamh = decode(x, m)
+        ph, R, lamh = ph[0], R[0], lamh[0]
+        if np.max(np.abs(R.T @ R - np.eye(3))) > 1e-6 or np.linalg.det(R) <= 0:
+            continue
+        p = c + L * (Rw.T @ ph)
+        R = Rw.T @ R
+        tau_S = robot.load * lamh / L * rho[idx]
+        if np.any(tau_S < -tol):
+            continue
+        if not _slack_ok(robot, rho, cables, p, R):
+            continue
+        if np.any(np.abs(tau_S) <= tol):
+            continue  # a solution of a smaller taut set: reported there (deduplication rule)
+        tau = np.zeros(robot.n)
+        tau[idx] = tau_S
+        cls = _classify(robot, rho, cables, p, R, tau_S)
+        sols.append(DGPSolution(taut1, p, R, tau, cls))
+    sub = DGPSubproblem(taut1, len(res.track.paths), finite, int(np.sum(real)), len(sols), failed,
+                        time.perf_counter() - t0)
+    return sub, sols
+
+
+def _merge(solutions, L):
+    out = []
+    for s in sorted(solutions, key=lambda s: len(s.taut)):
+        if any(np.max(np.abs(s.position - t.position)) <= 1e-7 * L and np.max(np.abs(s.rotation - t.rotation)) <= 1e-7
+               and len(s.taut) > 1 for t in out):
+            continue
+        out.append(s)
+    return out
+
+
+def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int = 6, seed: int = 0) -> "DGPResult":
+    """Every admissible equilibrium of ``robot`` with cable ``lengths`` (default: the robot's).
+
+    Subproblems: every taut set of m = 1 .. min(n, 6, max_m) cables.  ``jobs`` worker processes
+    (default ``os.cpu_count()``; 1 = in this process); ``progress(sub, done, total)`` is called in this
+    process after each finished subproblem.
+    """
+    t0 = time.perf_counter()
+    if lengths is None:
+        if robot.lengths is None:
+            raise ValueError("no cable lengths: give lengths= or a robot with lengths")
+        lengths = robot.lengths
+    rho = np.asarray(lengths, dtype=float)
+    if rho.shape != (robot.n,) or np.any(rho <= 0):
+        raise ValueError(f"expected {robot.n} positive cable lengths")
+    sets = [c for m in range(1, min(robot.n, 6, max_m) + 1) for c in itertools.combinations(range(robot.n), m)]
+    jobs = os.cpu_count() if jobs is None else max(1, int(jobs))
+    results = {}
+    heavy = [c for c in sets if len(c) >= 2 and generic_path(len(c)).exists()]
+    done = 0
+    if jobs > 1 and len(heavy) > 1:
+        for m in sorted({len(c) for c in heavy}):  # build and load in the parent: forked workers inherit them
+            _generic(m)
+        ctx = multiprocessing.get_context("fork") if sys.platform != "win32" else None
+        light = [c for c in sets if c not in heavy]
+        with ProcessPoolExecutor(max_workers=min(jobs, len(heavy)), mp_context=ctx) as ex:
+            futs = {ex.submit(_solve_subproblem, robot, rho, c, seed): c
+                    for c in sorted(heavy, key=lambda c: -len(c))}
+            for c in light:
+                results[c] = _solve_subproblem(robot, rho, c, seed)
+                done += 1
+                if progress:
+                    progress(results[c][0], done, len(sets))
+            for f in as_completed(futs):
+                results[futs[f]] = f.result()
+                done += 1
+                if progress:
+                    progress(results[futs[f]][0], done, len(sets))
+    else:
+        for c in sets:
+            results[c] = _solve_subproblem(robot, rho, c, seed)
+            done += 1
+            if progress:
+                progress(results[c][0], done, len(sets))
+    subs = tuple(results[c][0] for c in sets)
+    sols = _merge([s for c in sets for s in results[c][1]], robot.size)
+    sols.sort(key=lambda s: (-len(s.taut), s.taut, tuple(np.round(s.position, 9))))
+    return DGPResult(tuple(sols), subs, time.perf_counter() - t0)
+
+
+def dgp_table(result: DGPResult, n: int) -> str:
+    """Seed 000 Tables 1-3 layout: Conf., m, position of O', angles, tensions, H_r class."""
+    from .tables import format_table
+
+    headers = ["conf", "m", "x_O'", "y_O'", "z_O'", "phi_x", "phi_y", "phi_z"] + [f"tau_{i + 1}" for i in range(n)] + ["H_r"]
+    rows = []
+    for k, s in enumerate(result.solutions):
+        rows.append([str(k + 1), str(len(s.taut))] + [f"{v:.3f}" for v in s.position] + [f"{v:.3f}" for v in s.angles]
+                    + [f"{v:.3f}" for v in s.tensions] + [s.hessian])
+    lines = [format_table(headers, rows)] if rows else ["no admissible equilibrium"]
+    ms = sorted({len(s.taut) for s in result.subproblems})
+    counts = ", ".join(f"{len(result.by_m(m))} with {m} taut" for m in reversed(ms))
+    skipped = sum(1 for s in result.subproblems if s.skipped)
+    failed = sum(s.failed_paths for s in result.subproblems)
+    lines.append(f"{len(result.solutions)} admissible equilibria ({counts}), {len(result.stable)} stable; "
+                 f"{len(result.subproblems)} subproblems ({skipped} skipped), {failed} failed paths; "
+                 f"{result.seconds:.2f} s")
+    for s in result.subproblems:
+        if s.skipped:
+            lines.append(f"  skipped {list(s.taut)}: {s.skipped}")
+        elif s.failed_paths:
+            lines.append(f"  {list(s.taut)}: {s.failed_paths} failed path(s) remain")
+    return "\n".join(lines)
