@@ -42,12 +42,7 @@ class StraightLineHomotopy:
         return self.gamma * t * self.start.evaluate(x, self.q) + (1 - t) * self.target.evaluate(x, self.p)
 
     def evaluate_and_jacobian(self, x, t):
-        G, JG = self.start.evaluate_and_jacobian(x, self.q)
-        F, JF = self.target.evaluate_and_jacobian(x, self.p)
-        t = np.asarray(t, dtype=complex)
-        a = self.gamma * t
-        b = 1 - t
-        return a[:, None] * G + b[:, None] * F, a[:, None, None] * JG + b[:, None, None] * JF
+        return self.evaluate_all(x, t)[:2]
 
     def evaluate_all(self, x, t):
         """H, dH/dx, dH/dt."""
