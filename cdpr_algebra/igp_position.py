@@ -659,21 +659,31 @@ def _qmul(a, b):
     return np.concatenate([[a0 * b0 - av @ bv], a0 * bv + b0 * av + np.cross(av, bv)])
 
 
-def _chart(q):
-    """Scale a projective quaternion so that e0 = 1, else e3 = 1, else e2 = 1, else e1 = 1.
+def _charts(Q) -> list:
+    """Scale each projective quaternion (row of Q) so that e0 = 1, else e3 = 1, else e2 = 1, else e1 = 1.
 
     Components (real and imaginary parts separately) below 4 eps |q| are rounding noise: set to 0.
     """
-    nq = np.linalg.norm(q)
-    for k in (0, 3, 2, 1):
-        if abs(q[k]) > 1e-12 * nq:
-            q = q / q[k]
-            break
-    tiny = 4 * np.finfo(float).eps * np.linalg.norm(q)
-    re, im = np.real(q).copy(), np.imag(q).copy()
-    re[np.abs(re) <= tiny] = 0.0
-    im[np.abs(im) <= tiny] = 0.0
-    return re if not im.any() else re + 1j * im
+    Q = np.asarray(Q, dtype=complex)
+    if len(Q) == 0:
+        return []
+    order = np.array([0, 3, 2, 1])
+    nq = np.linalg.norm(Q, axis=1)
+    ok = np.abs(Q[:, order]) > 1e-12 * nq[:, None]
+    col = order[np.argmax(ok, axis=1)]
+    Q = Q / Q[np.arange(len(Q)), col][:, None]
+    tiny = 4 * np.finfo(float).eps * np.linalg.norm(Q, axis=1)[:, None]
+    re = np.where(np.abs(Q.real) <= tiny, 0.0, Q.real)
+    im = np.where(np.abs(Q.imag) <= tiny, 0.0, Q.imag)
+    return [r if not i.any() else r + 1j * i for r, i in zip(re, im)]
+
+
+def _qmul_rows(a, B):
+    """Quaternion product a * b for every row b of B (k, 4)."""
+    B = np.asarray(B)
+    a0, av = a[0], np.asarray(a[1:])
+    b0, bv = B[:, 0], B[:, 1:]
+    return np.column_stack([a0 * b0 - bv @ av, a0 * bv + b0[:, None] * av + np.cross(av, bv)])
 
 
 def _sort_key(s):
@@ -709,9 +719,9 @@ def solve_euler_parameters(robot: Robot, com_position, form: str = "21"):
         found = _dedupe(found + more)
         info["second_pass"] = {"form": info2["form"], "new": len(found) - n1}
     if np.allclose(W, np.eye(3)):
-        return [_chart(e) for e in found], W, info
+        return _charts(np.array(found).reshape(len(found), 4)), W, info
     qW = euler_parameters_from_matrix(W.T)
-    return [_chart(_qmul(qW, e)) for e in found], W, info
+    return _charts(_qmul_rows(qW, np.array(found).reshape(len(found), 4))), W, info
 
 
 def igp_position(robot: Robot, com_position, *, include_complex: bool = True, form: str = "21") -> IGPResult:
@@ -725,7 +735,7 @@ def igp_position(robot: Robot, com_position, *, include_complex: bool = True, fo
     G = _com_position(com_position)
     params, W, info = solve_euler_parameters(robot, G, form)
     eps = [np.real(e) if bool(np.all(np.imag(e) == 0)) else e for e in params]
-    Rs = [matrix_from_euler_parameters(e) for e in eps]
+    Rs = matrix_from_euler_parameters(np.array(eps, dtype=complex)) if eps else []
     candidates = make_solutions(robot, [G] * len(eps), Rs, eps)
     sols = [s for s in candidates if np.isfinite(s.residual) and s.residual <= _EQ_TOL]
     rejected = len(candidates) - len(sols)

@@ -58,14 +58,24 @@ def angles_from_matrix(R) -> np.ndarray:
 
 
 def matrix_from_euler_parameters(e) -> np.ndarray:
-    """Seed 004 eq. (20). ``e`` = (e0, e1, e2, e3), any non-zero scale; real or complex."""
+    """Seed 004 eq. (20). ``e`` = (e0, e1, e2, e3), any non-zero scale; real or complex; a stack (..., 4) gives
+    (..., 3, 3).  Written out: R = ((e0^2 - v.v) I + 2 v v^T + 2 e0 skew(v)) / (e0^2 + v.v), v = (e1, e2, e3)."""
     e = np.asarray(e)
-    e0, v = e[0], e[1:]
-    E = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]], dtype=e.dtype)
-    n2 = e0 * e0 + v @ v
-    if n2 == 0:
+    e0, v = e[..., 0], e[..., 1:]
+    n2 = e0 * e0 + np.sum(v * v, axis=-1)
+    if np.any(n2 == 0):
         raise CdprInputError("euler_parameters", "e0^2 + e1^2 + e2^2 + e3^2 must not vanish")
-    return np.eye(3, dtype=e.dtype) + 2.0 * (e0 * E + E @ E) / n2
+    vv = np.sum(v * v, axis=-1)
+    R = 2.0 * v[..., :, None] * v[..., None, :]
+    R = R + ((e0 * e0 - vv)[..., None, None] * np.eye(3))
+    x, y, z = v[..., 0], v[..., 1], v[..., 2]
+    R[..., 0, 1] -= 2 * e0 * z
+    R[..., 1, 0] += 2 * e0 * z
+    R[..., 0, 2] += 2 * e0 * y
+    R[..., 2, 0] -= 2 * e0 * y
+    R[..., 1, 2] -= 2 * e0 * x
+    R[..., 2, 1] += 2 * e0 * x
+    return R / n2[..., None, None]
 
 
 def matrix_from_rodrigues(e1, e2, e3) -> np.ndarray:
