@@ -54,8 +54,8 @@ import numpy as np
 from .dgp_equations import decode, encode, taut_family, taut_parameters
 from .dgp_one_cable import one_cable_equilibria
 from .jsonable import jsonable
-from .pose import angles_from_matrix
-from .stability import hessian_class, reduced_hessian
+from .pose import angles_from_matrix, rotation_taking
+from .stability import skew_stack, stability_classes
 
 __all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune"]
 
@@ -145,18 +145,6 @@ class DGPResult:
 
 
 # ---------------------------------------------------------------------------------------------
-def _skew(v):
-    """skew(v) for v (..., 3) -> (..., 3, 3)."""
-    S = np.zeros(v.shape + (3,), dtype=v.dtype)
-    S[..., 0, 1] = -v[..., 2]
-    S[..., 0, 2] = v[..., 1]
-    S[..., 1, 0] = v[..., 2]
-    S[..., 1, 2] = -v[..., 0]
-    S[..., 2, 0] = -v[..., 1]
-    S[..., 2, 1] = v[..., 0]
-    return S
-
-
 class FastTautSystem:
     """:func:`.dgp_equations.taut_family` (m) with hand-written vectorized evaluators of F, dF/dx, dF/dp (the
     same equations in the same order; checked against the compiled sympy evaluators in tests/test_dgp.py).
@@ -214,8 +202,8 @@ class FastTautSystem:
         J[:, 1, 6:9] = 2 * v
         J[:, 2, 3:6] = v
         J[:, 2, 6:9] = u
-        J[:, 3:6, 3:6] = _skew(v)
-        J[:, 3:6, 6:9] = -_skew(u)
+        J[:, 3:6, 3:6] = skew_stack(v)
+        J[:, 3:6, 6:9] = -skew_stack(u)
         J[:, 3:6, 9:12] = np.eye(3)
         # lengths: dE_i/dp = 2 s_i, dE_i/d(u, v, w) = 2 b_ic s_i
         J[:, 6:6 + m, 0:3] = 2 * s
@@ -230,8 +218,8 @@ class FastTautSystem:
             J[:, 6 + m:9 + m, 3 + 3 * c:6 + 3 * c] = -lb[:, c, None, None] * eye
         J[:, 6 + m:9 + m, 12:12 + m] = -np.swapaxes(s, 1, 2)
         # moment: G x f + sum lam_i B_i x A_i; d(G x f)/dG = -[f]x, d(B x A)/dB = -[A]x
-        Sf = _skew(f)  # (N, 3, 3)
-        SA = _skew(A)
+        Sf = skew_stack(f)  # (N, 3, 3)
+        SA = skew_stack(A)
         lSA = np.einsum("nm,nmij->nij", lam, SA)
         J[:, 9 + m:12 + m, 0:3] = -Sf - lSA
         for c in range(3):
@@ -242,7 +230,7 @@ class FastTautSystem:
             return F, J, None
         JP = np.zeros((N, self.neq, self.m), dtype=complex)
         ia, ir, ib, ig, i_f = 0, 3 * m, 4 * m, 7 * m, 7 * m + 3
-        SB = _skew(B)
+        SB = skew_stack(B)
         for i in range(m):
             # lengths
             JP[:, 6 + i, ia + 3 * i:ia + 3 * i + 3] = -2 * s[:, i]
@@ -256,7 +244,7 @@ class FastTautSystem:
             JP[:, 9 + m:12 + m, ib + 3 * i:ib + 3 * i + 3] = -lam[:, i, None, None] * (SA[:, i] @ Rm)
         JP[:, 6 + m:9 + m, i_f:i_f + 3] = eye
         JP[:, 9 + m:12 + m, ig:ig + 3] = -Sf @ Rm
-        JP[:, 9 + m:12 + m, i_f:i_f + 3] = _skew(G)
+        JP[:, 9 + m:12 + m, i_f:i_f + 3] = skew_stack(G)
         return F, J, JP
 
     def evaluate(self, x, p=None):
@@ -303,11 +291,9 @@ def _normalized(robot, rho, cables):
     """(parameters of the normalized problem, c, L, Rw): world coordinates x' = Rw (x - c) / L with Rw taking the
     load direction to -z (the direction of the stored generic sets: a straight parameter path from there never
     passes near a vanishing load), load 1."""
-    from .dgp_one_cable import _rotation_taking
-
     c = robot.base.mean(axis=0)
     L = robot.size
-    Rw = _rotation_taking(robot.load_direction, np.array([0.0, 0.0, -1.0]))
+    Rw = rotation_taking(robot.load_direction, np.array([0.0, 0.0, -1.0]))
     idx = list(cables)
     params = np.concatenate([((robot.base[idx] - c) @ Rw.T / L).ravel(), (rho[idx] / L) ** 2,
                              (robot.platform[idx] / L).ravel(), robot.com / L, [0.0, 0.0, -1.0]])
@@ -327,10 +313,7 @@ def _classify(robot, rho, cables, p, R, tau):
     idx = list(cables)
     B = p + robot.platform[idx] @ R.T
     G = p + R @ robot.com
-    L = robot.size
-    Hr = reduced_hessian(robot.base[idx], B, G, tau, rho[idx], length_scale=L)
-    scale = float(np.sum(np.abs(tau) / rho[idx]) + robot.load / L)
-    return hessian_class(Hr, scale)
+    return stability_classes(robot.base[idx], B, G, tau, rho[idx], robot.load, robot.size)
 
 
 def _solve_one_cable(robot, rho, i):

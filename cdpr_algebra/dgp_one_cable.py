@@ -14,25 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .pose import skew
+from .pose import rotation_taking, skew
 
 TWO_PI = 2 * np.pi
-
-
-def _rotation_taking(a, b) -> np.ndarray:
-    """A rotation R with R a = b (unit vectors)."""
-    v = np.cross(a, b)
-    c = float(a @ b)
-    if np.linalg.norm(v) < 1e-14:
-        if c > 0:
-            return np.eye(3)
-        axis = np.cross(a, [1.0, 0, 0])
-        if np.linalg.norm(axis) < 1e-8:
-            axis = np.cross(a, [0, 1.0, 0])
-        axis /= np.linalg.norm(axis)
-        return 2 * np.outer(axis, axis) - np.eye(3)
-    K = skew(v)
-    return np.eye(3) + K + K @ K / (1 + c)
 
 
 def _about(d, theta) -> np.ndarray:
@@ -75,7 +59,7 @@ def one_cable_equilibria(robot, cable: int, lengths=None, slack_tol: float = 1e-
     for s1 in (+1, -1):
         Bi = A[i] + s1 * rho[i] * d
         for s2 in ((+1, -1) if dist > 1e-12 * robot.size else (+1,)):
-            R0 = _rotation_taking(gb / dist, s2 * d) if dist > 1e-12 * robot.size else np.eye(3)
+            R0 = rotation_taking(gb / dist, s2 * d) if dist > 1e-12 * robot.size else np.eye(3)
             arcs = [(0.0, TWO_PI)]
             for j in range(robot.n):
                 if j == i:

@@ -23,6 +23,7 @@ import sympy as sp
 from .errors import CdprInputError
 from .generated import igp_orientation as gen
 from .results import IGPResult, SolutionSet, make_solution
+from .pose import rotation_taking
 from .robot import Robot
 
 # Directions (cos, sin) along which a coordinate of G is computed; rational so exact mode stays exact.
@@ -57,13 +58,7 @@ def _load_frame(direction, exact: bool):
         if d == [0, 0, -1]:
             return sp.diag(1, -1, -1)
         raise CdprInputError("load_direction", "exact mode needs the load direction along +z or -z")
-    k = np.array([0.0, 0.0, 1.0])
-    v = np.cross(d, k)
-    c = float(d @ k)
-    if np.linalg.norm(v) < 1e-15:
-        return np.eye(3) if c > 0 else np.diag([1.0, -1.0, -1.0])
-    vx = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
-    return np.eye(3) + vx + vx @ vx / (1.0 + c)
+    return rotation_taking(d / np.linalg.norm(d), [0.0, 0.0, 1.0])
 
 
 class _Problem:

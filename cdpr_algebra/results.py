@@ -9,7 +9,7 @@ import numpy as np
 from .jsonable import jsonable as _jsonable
 
 from .pose import angles_from_matrix, euler_parameters_from_matrix, matrix_from_euler_parameters
-from .stability import hessian_class, reduced_hessian
+from .stability import stability_classes
 from .statics import equilibrium_tensions
 
 
@@ -94,13 +94,7 @@ def make_solutions(robot, com_positions, rotations, euler_parameters=None, real_
         eq = equilibrium_tensions(robot.base, B, G, robot.load, robot.load_direction, length_scale=L)
         classes = [None] * len(idx)
         if dtype is float:
-            try:
-                Hr = reduced_hessian(robot.base, B, G, eq.tensions, eq.lengths, length_scale=L)
-            except np.linalg.LinAlgError:  # a cable configuration with parallel cables: one at a time
-                Hr = [reduced_hessian(robot.base, b, g, t, ln, length_scale=L)
-                      for b, g, t, ln in zip(B, G, eq.tensions, eq.lengths)]
-            scale = np.sum(np.abs(eq.tensions) / eq.lengths, axis=-1) + robot.load / L
-            classes = hessian_class(np.asarray(Hr), scale)
+            classes = stability_classes(robot.base, B, G, eq.tensions, eq.lengths, robot.load, L)
         residual = np.atleast_1d(eq.residual)
         for j, k in enumerate(idx):
             e = euler_parameters[k] if euler_parameters is not None else euler_parameters_from_matrix(np.real(R[j]))

@@ -88,3 +88,17 @@ def hessian_class(Hr, scale, rtol: float = 1e-8):
     neg = np.all(lam < -tol, axis=-1), np.any(lam < -tol, axis=-1)
     out = np.where(pos[0], ">", np.where(neg[0], "<", np.where(pos[1] & neg[1], "<>", np.where(neg[1], "<=", ">="))))
     return out.tolist() if out.ndim else str(out)
+
+
+def stability_classes(A, B, G, tensions, lengths, load: float, length_scale: float):
+    """Class of H_r for one pose or a stack of poses, with the tolerance scale of the problem:
+    sum |tau_i| / rho_i + Q / L (a stiffness).  A stack whose J^T ranks differ is done pose by pose."""
+    tensions = np.asarray(tensions)
+    lengths = np.asarray(lengths)
+    try:
+        Hr = reduced_hessian(A, B, G, tensions, lengths, length_scale=length_scale)
+    except np.linalg.LinAlgError:  # a stack with parallel cables somewhere: one at a time
+        Hr = np.array([reduced_hessian(A, b, g, t, ln, length_scale=length_scale)
+                       for b, g, t, ln in zip(B, G, tensions, lengths)])
+    scale = np.sum(np.abs(tensions) / lengths, axis=-1) + load / length_scale
+    return hessian_class(Hr, scale)
