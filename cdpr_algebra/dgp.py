@@ -365,7 +365,7 @@ def _track(fam, m, target, seed, gamma):
     return res, failed
 
 
-def _solve_subproblem(robot, rho, cables, seed: int = 0):
+def solve_taut_set(robot, rho, cables, seed: int = 0):
     """(DGPSubproblem, [DGPSolution]) for the 0-based taut set ``cables`` (pruning, tracking, filtering)."""
     t0 = time.perf_counter()
     cables = tuple(cables)
@@ -460,10 +460,10 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
         ctx = multiprocessing.get_context("fork") if sys.platform != "win32" else None
         light = [c for c in sets if c not in heavy]
         with ProcessPoolExecutor(max_workers=min(jobs, len(heavy)), mp_context=ctx) as ex:
-            futs = {ex.submit(_solve_subproblem, robot, rho, c, seed): c
+            futs = {ex.submit(solve_taut_set, robot, rho, c, seed): c
                     for c in sorted(heavy, key=lambda c: -len(c))}
             for c in light:
-                results[c] = _solve_subproblem(robot, rho, c, seed)
+                results[c] = solve_taut_set(robot, rho, c, seed)
                 done += 1
                 if progress:
                     progress(results[c][0], done, len(sets))
@@ -474,7 +474,7 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
                     progress(results[futs[f]][0], done, len(sets))
     else:
         for c in sets:
-            results[c] = _solve_subproblem(robot, rho, c, seed)
+            results[c] = solve_taut_set(robot, rho, c, seed)
             done += 1
             if progress:
                 progress(results[c][0], done, len(sets))
