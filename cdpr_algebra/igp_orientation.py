@@ -22,6 +22,7 @@ import sympy as sp
 
 from .errors import CdprInputError
 from .generated import igp_orientation as gen
+from .certify import with_certificates
 from .results import IGPResult, SolutionSet, make_solution
 from .pose import rotation_taking
 from .robot import Robot
@@ -387,13 +388,14 @@ def _locate(prob: _Problem, tol):
     return [X, Y, -rest / cz], None
 
 
-def igp_orientation(robot: Robot, rotation, *, exact: bool = False) -> IGPResult:
+def igp_orientation(robot: Robot, rotation, *, exact: bool = False, certify: bool = True) -> IGPResult:
     """All equilibria of a 3-cable robot with the platform orientation ``rotation`` assigned (seed 004 Sec. 3).
 
     Returns an :class:`IGPResult` with at most one solution, or with ``solution_set`` describing the special
     set of Appendix A (line, curve, conic, crane) or an empty set.  ``exact=True`` reads the robot's numbers as
     exact rationals (see :func:`_rational`) and needs an exact rotation (sympy entries).  A numeric solution is
     Newton-polished and verified by its equilibrium residual; the message says how it was checked.
+    ``certify``: attach the interval certificate of :mod:`.certify` to the solution (``certified``, ``certificate``).
     """
     t0 = time.perf_counter()
     if robot.n != 3:
@@ -405,6 +407,8 @@ def igp_orientation(robot: Robot, rotation, *, exact: bool = False) -> IGPResult
     tol = 1e-10
 
     def done(solutions=(), sset=None, msg=""):
+        if certify:
+            solutions = with_certificates(robot, solutions, "orientation")
         return IGPResult("orientation", tuple(solutions), sset, time.perf_counter() - t0, msg)
 
     Xw, sset = _locate(prob, tol)

@@ -62,6 +62,7 @@ from .errors import CdprInputError
 from .generated import dialytic as _gd
 from .generated import quartics as _gq
 from .pose import euler_parameters_from_matrix, matrix_from_euler_parameters
+from .certify import with_certificates
 from .results import IGPResult, make_solutions
 from .robot import Robot
 
@@ -724,12 +725,14 @@ def solve_euler_parameters(robot: Robot, com_position, form: str = "21"):
     return _charts(_qmul_rows(qW, np.array(found).reshape(len(found), 4))), W, info
 
 
-def igp_position(robot: Robot, com_position, *, include_complex: bool = True, form: str = "21") -> IGPResult:
+def igp_position(robot: Robot, com_position, *, include_complex: bool = True, form: str = "21",
+                 certify: bool = True) -> IGPResult:
     """All orientations for which the 3-cable ``robot`` can be in equilibrium with G at ``com_position``.
 
     Returns an :class:`IGPResult` (problem 'position') whose solutions come from :func:`make_solutions`, with
     ``euler_parameters`` (1, e1, e2, e3) or (0, e1, e2, e3) as found. Real solutions first. With
-    ``include_complex=False`` only real solutions are returned (all 24 are still computed).
+    ``include_complex=False`` only real solutions are returned (all 24 are still computed).  ``certify``: attach
+    the interval certificate of :mod:`.certify` to every real solution (``certified``, ``certificate``).
     """
     t0 = time.perf_counter()
     G = _com_position(com_position)
@@ -755,6 +758,8 @@ def igp_position(robot: Robot, com_position, *, include_complex: bool = True, fo
         msg += "; " + info["message"]
     if info.get("second_pass", {}).get("new"):
         msg += f"; {info['second_pass']['new']} found after turning the platform frame (second pass)"
+    if certify:
+        sols = with_certificates(robot, sols, "position")
     return IGPResult(problem="position", solutions=tuple(sols), seconds=time.perf_counter() - t0, message=msg)
 
 

@@ -32,6 +32,8 @@ class IGPSolution:
     real: bool
     residual: float
     tension_tolerance: float = 0.0
+    certified: bool | None = None  # interval certificate (certify.py); None for complex solutions / not run
+    certificate: object | None = None  # certify.Certificate
 
     @property
     def angles(self) -> np.ndarray | None:
@@ -60,6 +62,8 @@ class IGPSolution:
             "stable": self.stable,
             "real": self.real,
             "residual": self.residual,
+            "certified": self.certified,
+            "certificate": None if self.certificate is None else self.certificate.to_dict(),
         }
 
 

@@ -23,20 +23,33 @@ def format_table(headers: list[str], rows: list[list[str]]) -> str:
     return "\n".join(out)
 
 
+def certified_cell(solution) -> str:
+    """'yes', 'boundary' (a tension zero within rounding), 'no' (see the certificate's reason) or '-' (none)."""
+    c = getattr(solution, "certificate", None)
+    if c is None:
+        return "-"
+    if c.certified:
+        return "yes"
+    return "boundary" if "boundary" in (c.reason or "") else "no"
+
+
 def igp_table(result, include_complex: bool = False) -> str:
-    """Seed 004 Tables 1-4 layout: one row per solution."""
+    """Seed 004 Tables 1-4 layout: one row per solution, with the interval certificate (certify.py)."""
     sols = result.solutions if include_complex else result.real_solutions
     lines = []
     if result.problem == "orientation":
-        headers = ["#", "G (x, y, z)", "(rho_1, rho_2, rho_3)", "(tau_1, tau_2, tau_3)", "H_r", "admissible"]
+        headers = ["#", "G (x, y, z)", "(rho_1, rho_2, rho_3)", "(tau_1, tau_2, tau_3)", "H_r", "admissible", "certified"]
         rows = [[str(i + 1), _vec(s.com_position, 4), _vec(s.lengths, 2), _vec(s.tensions, 2), s.hessian or "-",
-                 "yes" if s.admissible else "no"] for i, s in enumerate(sols)]
+                 "yes" if s.admissible else "no", certified_cell(s)] for i, s in enumerate(sols)]
     else:
-        headers = ["#", "(e0, e1, e2, e3)", "(rho_1, rho_2, rho_3)", "(tau_1, tau_2, tau_3)", "H_r", "admissible"]
+        headers = ["#", "(e0, e1, e2, e3)", "(rho_1, rho_2, rho_3)", "(tau_1, tau_2, tau_3)", "H_r", "admissible",
+                   "certified"]
         rows = [[str(i + 1), _vec(s.euler_parameters, 10), _vec(s.lengths, 2), _vec(s.tensions, 2), s.hessian or "-",
-                 "yes" if s.admissible else "no"] for i, s in enumerate(sols)]
+                 "yes" if s.admissible else "no", certified_cell(s)] for i, s in enumerate(sols)]
     if rows:
         lines.append(format_table(headers, rows))
+        lines += [f"#{i + 1} not certified: {s.certificate.reason}" for i, s in enumerate(sols)
+                  if getattr(s, "certificate", None) is not None and not s.certificate.certified]
     if result.solution_set is not None:
         lines.append(f"solution set: {result.solution_set.kind}: {result.solution_set.description}")
         for k, v in result.solution_set.data.items():
@@ -45,7 +58,8 @@ def igp_table(result, include_complex: bool = False) -> str:
     n_real = len(result.real_solutions)
     summary = (f"{len(result.solutions)} solution(s), {n_real} real, "
                f"{sum(s.admissible for s in result.solutions)} admissible (tensions >= 0), "
-               f"{sum(bool(s.stable) and s.admissible for s in result.solutions)} admissible and stable; "
+               f"{sum(bool(s.stable) and s.admissible for s in result.solutions)} admissible and stable, "
+               f"{sum(bool(getattr(s, 'certified', None)) for s in result.solutions)} certified; "
                f"{result.seconds * 1e3:.1f} ms")
     if result.message:
         summary += f"; {result.message}"

@@ -1,0 +1,508 @@
+"""Interval certificates of the reported equilibria (issue 5): existence and uniqueness of the root in a tight box,
+and the consequences proven over that box (tension signs, slack cables, pose, class of the reduced Hessian).
+
+Square systems certified (all quadratic, world coordinates of the robot file; :func:`taut_system`):
+
+* **DGP, m = 2..6 taut cables**: exactly the equations of :mod:`.dgp_equations` (unknowns x = (p, u, v, w, lam),
+  R = [u v w], lam_i = tau_i / rho_i: rotation (6), cable lengths (m), force balance (3), moments about the world
+  origin (3)).
+* **DGP, m = 1**: the equilibria form a circle (the platform turns freely about the cable, which lies along the
+  load), so the 13 x 13 system of the same form is singular everywhere.  Square sub-formulation: the moment
+  component along the load direction d is dropped (given force balance the cable is parallel to d, so the moment
+  is Q (G - B_i) x d, always orthogonal to d; two moment components along e1, e2 with (e1, e2, d) independent are
+  equivalent to all three), and the turning angle is fixed by the gauge t . (R c) = 0, c a platform vector
+  orthogonal to g' - b_i', t = d x (R0 c) for the reported rotation R0.  It certifies the reported point of the
+  circle (the middle of the feasible arc), not the whole arc.
+* **IGP with assigned orientation** (seed 004 Sec. 3): unknowns (p, lam), R given: force and moment balance
+  (6 equations).
+* **IGP with assigned position** (seed 004 Sec. 4): unknowns (u, v, w, lam), G given (platform frame moved to G:
+  b_i' - g', g' = 0): rotation (6) and balance (6).  Rotation matrix entries instead of Euler parameters: every
+  orientation, half-turns (e0 = 0) included, is a regular point of this chart, so no branch is special.
+
+Existence and uniqueness: Krawczyk test with epsilon-inflation (:func:`.intervals.krawczyk_certify`) in a box of
+width <= 1e-9 relative to the scale of each unknown (L = robot.size for positions, 1 for rotation entries, Q / L
+for lam).  Over the certified box, in outward-rounded ball arithmetic (python-flint arb):
+
+* tensions tau_i = lam_i rho_i (IGP: rho_i = |B_i - A_i| enclosed too); sign 'positive', 'negative', or
+  'boundary' when the enclosure contains 0 (a tension zero within rounding is never reported as positive);
+* every slack cable j: |B_j - A_j| - rho_j enclosed, slack proven when its upper end is < 0;
+* pose: p and R enclosed;
+* class of H_r = N^T H N (seed 000 eqs. 28-30, :mod:`.stability`) from the bordered matrix
+  K = [[T H T, T J^T D], [D J T, 0]] (T = diag(1, 1, 1, 1/L, 1/L, 1/L), D = Q / L^2 I, positive scalings): when J
+  has full row rank m, In(K) = In(H_r) + (m, m, 0) (N. Gould, Math. Programming 32, 1985), and a nonsingular K
+  forces full row rank.  The inertia of K is proven by :func:`.intervals.symmetric_inertia` (Gershgorin discs of V^T K V with V
+  the floating-point eigenvectors of mid K, Sylvester's law).  A proven inertia gives the class '>', '<' or '<>';
+  a singular H_r ('>=', '<=', e.g. every m = 1 equilibrium, neutral about the cable) is 'undecided'.
+
+``certified`` is True when existence and uniqueness, every tension sign and every slack cable are proven.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from flint import arb
+
+from .dgp_equations import encode
+from .intervals import bounds, krawczyk_certify, sign, symmetric_inertia
+from .jsonable import jsonable
+
+BOX_RTOL = 1e-9  # max width of the certified box relative to the scale of each unknown
+
+# unknowns of the taut system
+_P, _U, _V, _W, _LAM = 0, 3, 6, 9, 12
+
+
+# ------------------------------------------------------------------------------------------ system
+def _skew_rows(a):
+    """Rows of skew(a) (the operator a x)."""
+    return ((0, -a[2], a[1]), (a[2], 0, -a[0]), (-a[1], a[0], 0))
+
+
+def taut_system(x, A, b, g, f, rho2=None, jacobian: bool = True):
+    """F(x) and dF/dx of :func:`.dgp_equations.taut_family` in plain arithmetic (floats, arb balls, ...).
+
+    x = (p, u, v, w, lam_1..lam_m); A, b: m points (world exit points, platform anchors), g: g', f: Q d;
+    ``rho2``: the m squared lengths, or None to leave the length equations out (IGP).  Rows: u.u - 1, v.v - 1,
+    u.v, w - u x v, [|B_i - A_i|^2 - rho_i^2], sum lam_i (A_i - B_i) + f, sum lam_i B_i x A_i + G x f.
+    ``jacobian=False`` returns (F, None).
+    """
+    m = len(A)
+    p, u, v, w = x[0:3], x[3:6], x[6:9], x[9:12]
+    lam = x[12:12 + m]
+    B = [[p[k] + bi[0] * u[k] + bi[1] * v[k] + bi[2] * w[k] for k in range(3)] for bi in b]
+    s = [[B[i][k] - A[i][k] for k in range(3)] for i in range(m)]
+    G = [p[k] + g[0] * u[k] + g[1] * v[k] + g[2] * w[k] for k in range(3)]
+    BxA = [(B[i][1] * A[i][2] - B[i][2] * A[i][1], B[i][2] * A[i][0] - B[i][0] * A[i][2],
+            B[i][0] * A[i][1] - B[i][1] * A[i][0]) for i in range(m)]
+    F = [u[0] * u[0] + u[1] * u[1] + u[2] * u[2] - 1, v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - 1,
+         u[0] * v[0] + u[1] * v[1] + u[2] * v[2],
+         w[0] - (u[1] * v[2] - u[2] * v[1]), w[1] - (u[2] * v[0] - u[0] * v[2]), w[2] - (u[0] * v[1] - u[1] * v[0])]
+    if rho2 is not None:
+        F += [s[i][0] * s[i][0] + s[i][1] * s[i][1] + s[i][2] * s[i][2] - rho2[i] for i in range(m)]
+    F += [f[k] - sum(lam[i] * s[i][k] for i in range(m)) for k in range(3)]
+    Gxf = [G[1] * f[2] - G[2] * f[1], G[2] * f[0] - G[0] * f[2], G[0] * f[1] - G[1] * f[0]]
+    F += [sum(lam[i] * BxA[i][k] for i in range(m)) + Gxf[k] for k in range(3)]
+    if not jacobian:
+        return F, None
+    n = 12 + m
+    J = []
+    r = [0] * n
+    r[_U:_U + 3] = [2 * u[0], 2 * u[1], 2 * u[2]]
+    J.append(r)
+    r = [0] * n
+    r[_V:_V + 3] = [2 * v[0], 2 * v[1], 2 * v[2]]
+    J.append(r)
+    r = [0] * n
+    r[_U:_U + 3] = v
+    r[_V:_V + 3] = u
+    J.append(r)
+    sv, su = _skew_rows(v), _skew_rows(u)  # d(w - u x v)/du = skew(v), d/dv = -skew(u)
+    for k in range(3):
+        r = [0] * n
+        r[_U:_U + 3] = sv[k]
+        r[_V:_V + 3] = [-su[k][0], -su[k][1], -su[k][2]]
+        r[_W + k] = 1
+        J.append(r)
+    if rho2 is not None:
+        for i in range(m):
+            t = [2 * s[i][0], 2 * s[i][1], 2 * s[i][2]]
+            r = t + [b[i][c] * t[k] for c in range(3) for k in range(3)] + [0] * m
+            J.append(r)
+    sig = sum(lam)
+    sig_b = [sum(lam[i] * b[i][c] for i in range(m)) for c in range(3)]
+    for k in range(3):
+        r = [0] * n
+        r[_P + k] = -sig
+        r[_U + k] = -sig_b[0]
+        r[_V + k] = -sig_b[1]
+        r[_W + k] = -sig_b[2]
+        r[_LAM:] = [-s[i][k] for i in range(m)]
+        J.append(r)
+    # d/dp = -skew(sum lam_i A_i + f); d/du = -skew(sum lam_i b_ix A_i + g_x f); same for v, w
+    lin = [[sum(lam[i] * A[i][k] for i in range(m)) + f[k] for k in range(3)]]
+    lin += [[sum(lam_b * A[i][k] for i, lam_b in enumerate([lam[i] * b[i][c] for i in range(m)])) + g[c] * f[k]
+             for k in range(3)] for c in range(3)]
+    sk = [_skew_rows(a) for a in lin]
+    for k in range(3):
+        r = [-e for blk in range(4) for e in sk[blk][k]] + [BxA[i][k] for i in range(m)]
+        J.append(r)
+    return F, J
+
+
+def _select(F, J, rows, cols):
+    return [F[i] for i in rows], None if J is None else [[J[i][j] for j in cols] for i in rows]
+
+
+# ------------------------------------------------------------------------------------- certificate
+@dataclass(frozen=True)
+class Certificate:
+    """What was proven about one reported root (see the module docstring).
+
+    ``box_width``: max width of the certified unknown box in world length units (each width divided by the scale
+    of its unknown, times L); ``tension_lower/upper``: n values, 0 for slack cables; ``tension_signs``: per
+    cable 'positive' | 'negative' | 'boundary' (enclosure contains 0) | 'slack' (not in the taut set) |
+    'unknown' (existence not proven);
+    ``slack_margin_lower/upper``: enclosure of |B_j - A_j| - rho_j (NaN for taut cables); ``slack_proven``: every
+    slack cable proven slack (vacuously True without slack cables); ``hessian``: 'proven' (``hessian_class`` is
+    then the proven class '>', '<' or '<>') or 'undecided'.  Enclosures are NaN when existence was not proven.
+    """
+
+    certified: bool
+    reason: str | None
+    problem: str
+    box_width: float
+    position_lower: np.ndarray
+    position_upper: np.ndarray
+    rotation_lower: np.ndarray
+    rotation_upper: np.ndarray
+    tension_lower: np.ndarray
+    tension_upper: np.ndarray
+    tension_signs: tuple
+    slack_margin_lower: np.ndarray
+    slack_margin_upper: np.ndarray
+    slack_proven: bool
+    hessian: str
+    hessian_class: str | None = None
+    exists_unique: bool = False
+    iterations: int = 0
+    newton_step: float = float("nan")
+    extra: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        """JSON-ready; NaN (not proven, or not applicable) becomes None."""
+        return _no_nan(jsonable({
+            "certified": self.certified, "reason": self.reason, "problem": self.problem,
+            "exists_unique": self.exists_unique, "box_width": self.box_width,
+            "position_lower": self.position_lower, "position_upper": self.position_upper,
+            "rotation_lower": self.rotation_lower, "rotation_upper": self.rotation_upper,
+            "tension_lower": self.tension_lower, "tension_upper": self.tension_upper,
+            "tension_signs": list(self.tension_signs),
+            "slack_margin_lower": self.slack_margin_lower, "slack_margin_upper": self.slack_margin_upper,
+            "slack_proven": self.slack_proven, "hessian": self.hessian, "hessian_class": self.hessian_class,
+            "krawczyk_iterations": self.iterations, "newton_step": self.newton_step, **self.extra,
+        }))
+
+
+def _no_nan(v):
+    if isinstance(v, float) and v != v:
+        return None
+    if isinstance(v, list):
+        return [_no_nan(x) for x in v]
+    if isinstance(v, dict):
+        return {k: _no_nan(x) for k, x in v.items()}
+    return v
+
+
+def _nan(*shape):
+    return np.full(shape, np.nan)
+
+
+def _failed(problem, n, reason, kr, taut) -> Certificate:
+    signs = tuple("slack" if j not in taut else "unknown" for j in range(n))
+    return Certificate(False, reason, problem, float("nan"), _nan(3), _nan(3), _nan(3, 3), _nan(3, 3), _nan(n),
+                       _nan(n), signs, _nan(n), _nan(n), False, "undecided", None, False,
+                       kr.iterations if kr else 0, kr.newton_step if kr else float("nan"))
+
+
+def _vec_sub(a, b):
+    return [a[k] - b[k] for k in range(3)]
+
+
+def _dot(a, b):
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def _cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def _bordered_matrix(A, B, G, lam, L, Q):
+    """K = [[T H T, T J^T D], [D J T, 0]] in balls (lists of rows); H of seed 000 eq. (29) with tau_i/rho_i = lam_i,
+    J rows [s_i, r_i x s_i] (eq. 30 without the positive factors 1/rho_i, which do not change the inertia)."""
+    m = len(A)
+    n = 6 + m
+    K = [[arb(0)] * n for _ in range(n)]
+    r = [_vec_sub(Bi, G) for Bi in B]
+    ga = [_vec_sub(G, Ai) for Ai in A]
+    sig = sum(lam, arb(0))
+    iL = arb(1) / L
+    iL2 = iL * iL
+    for k in range(3):
+        K[k][k] = sig
+    S = [[sum((lam[i] * _skew_rows(r[i])[a][c] for i in range(m)), arb(0)) for c in range(3)] for a in range(3)]
+    for a in range(3):
+        for c in range(3):
+            K[a][3 + c] = -S[a][c] * iL
+            K[3 + a][c] = S[a][c] * iL
+    rg = [_dot(r[i], ga[i]) for i in range(m)]
+    for a in range(3):
+        for c in range(3):
+            h = sum((lam[i] * (0.5 * (ga[i][a] * r[i][c] + r[i][a] * ga[i][c]) - (rg[i] if a == c else 0))
+                     for i in range(m)), arb(0))
+            K[3 + a][3 + c] = h * iL2
+    D = arb(Q) * iL2
+    for i in range(m):
+        s = _vec_sub(B[i], A[i])
+        rs = _cross(r[i], s)
+        row = [s[k] * D for k in range(3)] + [rs[k] * iL * D for k in range(3)]
+        for j in range(6):
+            K[6 + i][j] = row[j]
+            K[j][6 + i] = row[j]
+    return K
+
+
+def hessian_certificate(A, B, G, lam, L, Q) -> tuple[str, str | None]:
+    """('proven', class) with class '>', '<' or '<>' of the reduced Hessian, or ('undecided', None).
+
+    A, B (taut cables), G: balls (lists of 3); lam: balls; L, Q: floats."""
+    m = len(A)
+    if m == 0:
+        return "undecided", None
+    inertia = symmetric_inertia(_bordered_matrix(A, B, G, lam, L, Q))
+    if inertia is None:
+        return "undecided", None
+    pos, neg = inertia[0] - m, inertia[1] - m
+    if pos < 0 or neg < 0:  # impossible with full row rank; be safe
+        return "undecided", None
+    if neg == 0:
+        return "proven", ">"
+    if pos == 0:
+        return "proven", "<"
+    return "proven", "<>"
+
+
+def _consequences(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None) -> Certificate:
+    """Certificate from the certified enclosures: p (3 balls), R (3 x 3 balls), lam (m balls) of the taut cables.
+    ``lengths``: all n lengths (floats) or None (IGP: lengths of the taut cables enclosed from the box);
+    ``L``: robot.size."""
+    n = robot.n
+    A = [[arb(float(c)) for c in a] for a in robot.base]
+    bp = [[arb(float(c)) for c in bb] for bb in robot.platform]
+    gp = [arb(float(c)) for c in robot.com]
+
+    def body(c):
+        return [p[k] + R[k][0] * c[0] + R[k][1] * c[1] + R[k][2] * c[2] for k in range(3)]
+
+    Bs = [body(bp[j]) for j in range(n)]
+    G = body(gp)
+    reasons = []
+    tau = [arb(0)] * n
+    signs = ["slack"] * n
+    for k, i in enumerate(taut):
+        s_i = _vec_sub(Bs[i], A[i])
+        rho_i = arb(float(lengths[i])) if lengths is not None else _dot(s_i, s_i).sqrt()
+        tau[i] = lam[k] * rho_i
+        signs[i] = sign(tau[i])
+        if signs[i] == "boundary":
+            reasons.append(f"tension {i + 1} is a boundary case (its enclosure contains 0)")
+    t_lo, t_hi = bounds(tau)
+    s_lo, s_hi = _nan(n), _nan(n)
+    slack_ok = True
+    for j in range(n):
+        if j in taut:
+            continue
+        d = _vec_sub(Bs[j], A[j])
+        margin = _dot(d, d).sqrt() - float(lengths[j])
+        (s_lo[j],), (s_hi[j],) = bounds([margin])
+        if not margin < 0:
+            slack_ok = False
+            reasons.append(f"cable {j + 1} not proven slack (|B - A| - rho in [{s_lo[j]:.3g}, {s_hi[j]:.3g}])")
+    hess, cls = hessian_certificate([A[i] for i in taut], [Bs[i] for i in taut], G, list(lam), L, robot.load)
+    p_lo, p_hi = bounds(p)
+    R_lo, R_hi = bounds(R)
+    return Certificate(not reasons, "; ".join(reasons) or None, problem, rel_width * L, p_lo, p_hi, R_lo, R_hi,
+                       t_lo, t_hi, tuple(signs), s_lo, s_hi, slack_ok, hess, cls, True, kr.iterations,
+                       kr.newton_step, extra or {})
+
+
+def _scales(robot, m, cols, L):
+    """Scale of each unknown (p, u, v, w, lam): L, 1, Q / L."""
+    full = np.array([L] * 3 + [1.0] * 9 + [robot.load / L] * m)
+    return full[list(cols)]
+
+
+# --------------------------------------------------------------------------------------------- DGP
+def _robot_data(robot, taut, num, com_at_origin: bool = False):
+    """(A, b, g, f) of the taut cables with numbers made by ``num`` (arb: exact balls; float).
+    ``com_at_origin``: platform frame moved to G (b_i' - g', g' = 0; the difference is enclosed for arb)."""
+    A = [[num(float(c)) for c in robot.base[i]] for i in taut]
+    g = [num(float(c)) for c in robot.com]
+    b = [[num(float(c)) for c in robot.platform[i]] for i in taut]
+    if com_at_origin:
+        b = [[bi[k] - g[k] for k in range(3)] for bi in b]
+        g = [num(0.0)] * 3
+    f = [num(robot.load) * float(c) for c in robot.load_direction]
+    return A, b, g, f
+
+
+def _krawczyk(make_system, x0, scale, box_rtol):
+    """Krawczyk certification of the system built by ``make_system(num) -> system(x, jacobian) -> (F, J)``
+    (``num`` = arb for the rigorous evaluators, float for the approximate inverse and Newton step)."""
+    sa, sf = make_system(arb), make_system(float)
+    return krawczyk_certify(lambda x: sa(x, False)[0], lambda x: sa(x, True)[1], x0, scale, box_rtol,
+                            F_float=lambda x: sf(x.tolist(), False)[0], J_float=lambda x: sf(x.tolist(), True)[1])
+
+
+def certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol: float = BOX_RTOL) -> Certificate:
+    """Certificate of one DGP root with the 0-based taut ``cables`` (m = 1..6), cable ``lengths`` (all n, None:
+    the robot's), pose (``position`` of the platform-frame origin, ``rotation``) and the m taut ``tensions``."""
+    rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
+    taut = [int(c) for c in cables]
+    m = len(taut)
+    L = robot.size
+    tensions = np.asarray(tensions, dtype=float).ravel()
+    if tensions.shape != (m,) or not 1 <= m <= 6:
+        raise ValueError(f"expected 1..6 taut cables and one tension per taut cable, got {m} cables and "
+                         f"{tensions.shape} tensions")
+    x0 = encode(np.asarray(position, float), np.asarray(rotation, float), tensions / rho[taut])
+    if m >= 2:
+        def make_system(num):
+            A, b, g, f = _robot_data(robot, taut, num)
+            rho2 = [num(float(rho[i])) ** 2 for i in taut]
+            return lambda x, jac: taut_system(x, A, b, g, f, rho2, jac)
+    else:
+        gauge = _one_cable_gauge(robot, taut[0], np.asarray(rotation, float))
+        if gauge is None:
+            return _failed("dgp", robot.n, "G coincides with the cable anchor: the equilibria of this taut set form "
+                                           "a 3-dof family, no isolated root to certify", None, taut)
+
+        def make_system(num):
+            A, b, g, f = _robot_data(robot, taut, num)
+            return _one_cable_system(A, b, g, f, [num(float(rho[taut[0]])) ** 2], *gauge)
+    scale = _scales(robot, m, range(12 + m), L)
+    kr = _krawczyk(make_system, x0, scale, box_rtol)
+    if not kr.proven:
+        return _failed("dgp", robot.n, kr.reason, kr, taut)
+    X = kr.enclosure
+    R = [[X[_U + k], X[_V + k], X[_W + k]] for k in range(3)]
+    return _consequences("dgp", robot, taut, rho, X[0:3], R, X[12:], kr, kr.relative_width(scale), L)
+
+
+def _one_cable_gauge(robot, i, R0):
+    """(e1, e2, c, t) of the m = 1 formulation (module docstring), or None when G is at the anchor B_i."""
+    d = robot.load_direction
+    gb = robot.com - robot.platform[i]
+    if np.linalg.norm(gb) <= 1e-12 * robot.size:
+        return None
+    e1 = np.cross(d, np.eye(3)[int(np.argmin(np.abs(d)))])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(d, e1)
+    c = np.cross(gb, np.eye(3)[int(np.argmin(np.abs(gb)))])
+    c /= np.linalg.norm(c)
+    t = np.cross(d, R0 @ c)
+    t /= np.linalg.norm(t)
+    return tuple(v.tolist() for v in (e1, e2, c, t))
+
+
+def _one_cable_system(A, b, g, f, rho2, e1, e2, c, t):
+    """Square system for m = 1: rotation (6), length, force (3), moments along e1 and e2, gauge t . (R c) = 0."""
+
+    def system(x, jac=True):
+        F, J = taut_system(x, A, b, g, f, rho2, jac)
+        # rows of taut_system: rotation 0-5, length 6, force 7-9, moment 10-12
+        Fs = F[:10] + [sum(e_[k] * F[10 + k] for k in range(3)) for e_ in (e1, e2)]
+        Rc = [c[0] * x[_U + k] + c[1] * x[_V + k] + c[2] * x[_W + k] for k in range(3)]
+        Fs.append(sum(t[k] * Rc[k] for k in range(3)))
+        if not jac:
+            return Fs, None
+        Js = J[:10] + [[sum(e_[k] * J[10 + k][j] for k in range(3)) for j in range(13)] for e_ in (e1, e2)]
+        r = [0] * 13
+        for k in range(3):
+            r[_U + k], r[_V + k], r[_W + k] = c[0] * t[k], c[1] * t[k], c[2] * t[k]
+        Js.append(r)
+        return Fs, Js
+
+    return system
+
+
+def certify_taut_roots(robot, lengths, roots, box_rtol: float = BOX_RTOL) -> list:
+    """:func:`certify_taut_root` over many roots: ``roots`` = iterable of (cables, position, rotation, tensions)."""
+    return [certify_taut_root(robot, lengths, c, p, R, t, box_rtol) for c, p, R, t in roots]
+
+
+def certify_dgp_solutions(robot, solutions, lengths=None, box_rtol: float = BOX_RTOL) -> list:
+    """Certificates of DGP solutions (objects with ``taut`` 1-based, ``position``, ``rotation`` and n ``tensions``,
+    e.g. ``dgp(robot).solutions``), in order.  This is the call to add to the DGP (or to run after it)."""
+    out = []
+    for s in solutions:
+        cables = [t - 1 for t in s.taut]
+        out.append(certify_taut_root(robot, lengths, cables, s.position, s.rotation,
+                                     np.asarray(s.tensions, float)[cables], box_rtol))
+    return out
+
+
+# --------------------------------------------------------------------------------------------- IGP
+def certify_igp_orientation(robot, rotation, position, tensions, lengths, box_rtol: float = BOX_RTOL) -> Certificate:
+    """IGP with assigned ``rotation`` (seed 004 Sec. 3): unknowns (p, lam), force and moment balance (6 x 6).
+    ``position``: the platform-frame origin p of the root; ``tensions``, ``lengths``: its 3 tensions and lengths
+    (the starting point lam = tau / rho)."""
+    R0 = np.asarray(rotation, float)
+    m = robot.n
+    L = robot.size
+    cols = [0, 1, 2] + [12 + i for i in range(m)]
+    rows = list(range(6, 12))
+
+    def make_system(num):
+        A, b, g, f = _robot_data(robot, range(m), num)
+        Rx = [num(v) for v in R0.T.ravel().tolist()]  # u, v, w exactly as given
+        return lambda y, jac: _select(*taut_system(list(y[:3]) + Rx + list(y[3:]), A, b, g, f, None, jac), rows, cols)
+
+    x0 = np.concatenate([np.asarray(position, float), np.asarray(tensions, float) / np.asarray(lengths, float)])
+    scale = _scales(robot, m, cols, L)
+    kr = _krawczyk(make_system, x0, scale, box_rtol)
+    if not kr.proven:
+        return _failed("igp_orientation", robot.n, kr.reason, kr, list(range(m)))
+    X = kr.enclosure
+    R = [[arb(float(R0[k][j])) for j in range(3)] for k in range(3)]
+    return _consequences("igp_orientation", robot, list(range(m)), None, X[0:3], R, X[3:], kr,
+                         kr.relative_width(scale), L)
+
+
+def certify_igp_position(robot, com_position, rotation, tensions, lengths, box_rtol: float = BOX_RTOL) -> Certificate:
+    """IGP with assigned position of G (seed 004 Sec. 4): unknowns (u, v, w, lam), rotation and balance equations
+    (12 x 12) with the platform frame moved to G (b_i' - g', g' = 0, p = G)."""
+    R0 = np.asarray(rotation, float)
+    m = robot.n
+    L = robot.size
+    cols = list(range(3, 12)) + [12 + i for i in range(m)]
+    Gf = np.asarray(com_position, float)
+
+    def make_system(num):
+        A, b, g, f = _robot_data(robot, range(m), num, com_at_origin=True)
+        G = [num(v) for v in Gf.tolist()]
+        return lambda y, jac: _select(*taut_system(G + list(y), A, b, g, f, None, jac), range(12), cols)
+
+    x0 = np.concatenate([R0.T.ravel(), np.asarray(tensions, float) / np.asarray(lengths, float)])
+    scale = _scales(robot, m, cols, L)
+    kr = _krawczyk(make_system, x0, scale, box_rtol)
+    if not kr.proven:
+        return _failed("igp_position", robot.n, kr.reason, kr, list(range(m)))
+    X = kr.enclosure
+    R = [[X[k], X[3 + k], X[6 + k]] for k in range(3)]
+    gp = [arb(float(c)) for c in robot.com]
+    p = [arb(float(Gf[k])) - (R[k][0] * gp[0] + R[k][1] * gp[1] + R[k][2] * gp[2]) for k in range(3)]
+    return _consequences("igp_position", robot, list(range(m)), None, p, R, X[9:], kr, kr.relative_width(scale), L)
+
+
+def certify_igp_solution(robot, solution, problem: str, box_rtol: float = BOX_RTOL) -> Certificate | None:
+    """Certificate of a real :class:`.results.IGPSolution` of the IGP ``problem`` ('orientation' or 'position');
+    None for a complex solution."""
+    if not solution.real:
+        return None
+    args = (np.real(solution.tensions), np.real(solution.lengths), box_rtol)
+    if problem == "orientation":
+        return certify_igp_orientation(robot, np.real(solution.rotation), np.real(solution.position), *args)
+    if problem == "position":
+        return certify_igp_position(robot, np.real(solution.com_position), np.real(solution.rotation), *args)
+    raise ValueError(f"unknown IGP problem {problem!r}")
+
+
+def with_certificates(robot, solutions, problem: str) -> list:
+    """The IGP solutions with ``certified`` and ``certificate`` filled in (real ones; complex ones keep None)."""
+    out = []
+    for s in solutions:
+        c = certify_igp_solution(robot, s, problem)
+        out.append(s if c is None else replace(s, certified=c.certified, certificate=c))
+    return out
