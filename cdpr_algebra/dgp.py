@@ -94,6 +94,15 @@ class DGPSolution:
     tensions: np.ndarray
     hessian: str
     certified: bool | None = None
+    certificate: object = None  # certify.Certificate (interval proof, issue 5) or None when not certified
+
+    def with_certificate(self, cert) -> "DGPSolution":
+        """This solution with an interval certificate attached (the proven stability class replaces the floating
+        point one when the certificate proves it)."""
+        from dataclasses import replace
+
+        cls = cert.hessian_class if cert.hessian == "proven" and cert.hessian_class else self.hessian
+        return replace(self, certified=bool(cert.certified), certificate=cert, hessian=cls)
 
     @property
     def angles(self) -> np.ndarray:
@@ -106,7 +115,8 @@ class DGPSolution:
     def to_dict(self) -> dict:
         return {"taut": list(self.taut), "position": jsonable(self.position), "angles": jsonable(self.angles),
                 "rotation": jsonable(self.rotation), "tensions": jsonable(self.tensions), "hessian": self.hessian,
-                "stable": self.stable, "certified": self.certified}
+                "stable": self.stable, "certified": self.certified,
+                "certificate": None if self.certificate is None else self.certificate.to_dict()}
 
 
 @dataclass(frozen=True)
@@ -257,6 +267,17 @@ class FastTautSystem:
     def evaluate_all(self, x, p=None):
         return self._eval(x, p, True, True)
 
+    def evaluate_directional(self, x, p, dp):
+        """F, dF/dx and the derivative of F along the parameter direction dp.  Every equation is a polynomial
+        of degree <= 2 in the parameters (A, rho^2, b', g', Q d), so the central difference
+        (F(x; p + dp) - F(x; p - dp)) / 2 is that derivative exactly (up to rounding); cheaper than dF/dp."""
+        F, J, _ = self._eval(x, p, True, False)
+        p = np.asarray(p, dtype=complex)
+        dp = np.asarray(dp, dtype=complex)
+        Fp = self._eval(x, p + dp, False, False)[0]
+        Fm = self._eval(x, p - dp, False, False)[0]
+        return F, J, 0.5 * (Fp - Fm)
+
 
 _FAST: dict = {}
 
@@ -365,8 +386,19 @@ def _track(fam, m, target, seed, gamma):
     return res, failed
 
 
-def solve_taut_set(robot, rho, cables, seed: int = 0):
-    """(DGPSubproblem, [DGPSolution]) for the 0-based taut set ``cables`` (pruning, tracking, filtering)."""
+def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True):
+    """(DGPSubproblem, [DGPSolution]) for the 0-based taut set ``cables`` (pruning, tracking, filtering, and
+    with ``certify`` an interval certificate for every admissible solution, :mod:`.certify`)."""
+    sub, sols = _solve_taut_set(robot, rho, cables, seed)
+    if certify and sols:
+        from .certify import certify_taut_root
+
+        sols = [s.with_certificate(certify_taut_root(robot, rho, [t - 1 for t in s.taut], s.position, s.rotation,
+                                                     s.tensions[[t - 1 for t in s.taut]])) for s in sols]
+    return sub, sols
+
+
+def _solve_taut_set(robot, rho, cables, seed: int = 0):
     t0 = time.perf_counter()
     cables = tuple(cables)
     taut1 = tuple(c + 1 for c in cables)
@@ -434,12 +466,13 @@ def _merge(solutions, L):
     return out
 
 
-def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int = 6, seed: int = 0) -> "DGPResult":
+def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int = 6, seed: int = 0,
+        certify: bool = True) -> "DGPResult":
     """Every admissible equilibrium of ``robot`` with cable ``lengths`` (default: the robot's).
 
     Subproblems: every taut set of m = 1 .. min(n, 6, max_m) cables.  ``jobs`` worker processes
     (default ``os.cpu_count()``; 1 = in this process); ``progress(sub, done, total)`` is called in this
-    process after each finished subproblem.
+    process after each finished subproblem; ``certify``: attach an interval certificate to every solution.
     """
     t0 = time.perf_counter()
     if lengths is None:
@@ -460,10 +493,10 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
         ctx = multiprocessing.get_context("fork") if sys.platform != "win32" else None
         light = [c for c in sets if c not in heavy]
         with ProcessPoolExecutor(max_workers=min(jobs, len(heavy)), mp_context=ctx) as ex:
-            futs = {ex.submit(solve_taut_set, robot, rho, c, seed): c
+            futs = {ex.submit(solve_taut_set, robot, rho, c, seed, certify): c
                     for c in sorted(heavy, key=lambda c: -len(c))}
             for c in light:
-                results[c] = solve_taut_set(robot, rho, c, seed)
+                results[c] = solve_taut_set(robot, rho, c, seed, certify)
                 done += 1
                 if progress:
                     progress(results[c][0], done, len(sets))
@@ -474,7 +507,7 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
                     progress(results[futs[f]][0], done, len(sets))
     else:
         for c in sets:
-            results[c] = solve_taut_set(robot, rho, c, seed)
+            results[c] = solve_taut_set(robot, rho, c, seed, certify)
             done += 1
             if progress:
                 progress(results[c][0], done, len(sets))
@@ -484,21 +517,34 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
     return DGPResult(tuple(sols), subs, time.perf_counter() - t0)
 
 
+def _certified_label(s) -> str:
+    if s.certificate is None:
+        return "-"
+    if s.certified:
+        return "yes" if s.certificate.hessian == "proven" else "yes (H_r undecided)"
+    return "boundary" if "boundary" in s.certificate.tension_signs else "no"
+
+
 def dgp_table(result: DGPResult, n: int) -> str:
     """Seed 000 Tables 1-3 layout: Conf., m, position of O', angles, tensions, H_r class."""
     from .tables import format_table
 
-    headers = ["conf", "m", "x_O'", "y_O'", "z_O'", "phi_x", "phi_y", "phi_z"] + [f"tau_{i + 1}" for i in range(n)] + ["H_r"]
+    headers = ["conf", "m", "x_O'", "y_O'", "z_O'", "phi_x", "phi_y", "phi_z"] + [f"tau_{i + 1}" for i in range(n)] + ["H_r", "certified"]
     rows = []
     for k, s in enumerate(result.solutions):
         rows.append([str(k + 1), str(len(s.taut))] + [f"{v:.3f}" for v in s.position] + [f"{v:.3f}" for v in s.angles]
-                    + [f"{v:.3f}" for v in s.tensions] + [s.hessian])
+                    + [f"{v:.3f}" for v in s.tensions] + [s.hessian, _certified_label(s)])
     lines = [format_table(headers, rows)] if rows else ["no admissible equilibrium"]
+    for k, s in enumerate(result.solutions):
+        if s.certificate is not None and not s.certified:
+            lines.append(f"  #{k + 1} not certified: {s.certificate.reason}")
     ms = sorted({len(s.taut) for s in result.subproblems})
     counts = ", ".join(f"{len(result.by_m(m))} with {m} taut" for m in reversed(ms))
     skipped = sum(1 for s in result.subproblems if s.skipped)
     failed = sum(s.failed_paths for s in result.subproblems)
-    lines.append(f"{len(result.solutions)} admissible equilibria ({counts}), {len(result.stable)} stable; "
+    ncert = sum(1 for s in result.solutions if s.certified)
+    lines.append(f"{len(result.solutions)} admissible equilibria ({counts}), {len(result.stable)} stable, "
+                 f"{ncert} certified; "
                  f"{len(result.subproblems)} subproblems ({skipped} skipped), {failed} failed paths; "
                  f"{result.seconds:.2f} s")
     for s in result.subproblems:

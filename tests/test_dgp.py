@@ -33,6 +33,7 @@ def test_seed000_test1_counts(test1):
     assert len(res.by_m(3)) == 6
     assert len(res.by_m(2)) == 0 and len(res.by_m(1)) == 0
     assert len(res.stable) == 1
+    assert all(s.certified and s.certificate.hessian == "proven" for s in res.solutions)
     assert all(s.failed_paths == 0 for s in res.subproblems)
     assert len(res.subproblems) == 7
     sub3 = [s for s in res.subproblems if s.taut == (1, 2, 3)][0]
@@ -184,12 +185,18 @@ def test_cli_json_contract(tmp_path, capsys):
     assert len(out["subproblems"]) == 3 and "[3/3]" in cap.err
     for sub in out["subproblems"]:
         assert set(sub) == {"taut", "paths", "finite", "real", "admissible", "failed_paths", "seconds", "skipped"}
-    keys = {"taut", "position", "angles", "rotation", "tensions", "hessian", "stable", "certified"}
+    keys = {"taut", "position", "angles", "rotation", "tensions", "hessian", "stable", "certified", "certificate"}
     assert out["solutions"]
     for sol in out["solutions"]:
         assert set(sol) == keys
         assert len(sol["tensions"]) == 2 and np.array(sol["rotation"]).shape == (3, 3)
-        assert sol["hessian"] in (">", ">=", "<", "<=", "<>") and sol["certified"] is None
+        assert sol["hessian"] in (">", ">=", "<", "<=", "<>") and isinstance(sol["certified"], bool)
+        cert = sol["certificate"]
+        assert {"box_width", "tension_lower", "tension_upper", "hessian"} <= set(cert)
+        assert cert["hessian"] in ("proven", "undecided") and len(cert["tension_lower"]) == 2
+        if sol["certified"]:  # the enclosures contain the reported tensions
+            assert np.all(np.array(cert["tension_lower"]) <= np.array(sol["tensions"]) + 1e-12)
+            assert np.all(np.array(sol["tensions"]) <= np.array(cert["tension_upper"]) + 1e-12)
     assert any(np.allclose(s["position"], p, atol=1e-7) and s["taut"] == [1, 2] for s in out["solutions"])
     # lengths on the command line override the file's; without any lengths: exit 2
     assert main(["dgp", str(path), "--jobs", "1", "--lengths", *map(str, robot.lengths)]) == 0
