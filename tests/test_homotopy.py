@@ -285,3 +285,42 @@ def test_stored_dgp_instance_matches_family(dgp):
     assert np.iscomplexobj(p1) and np.max(np.abs(p1.imag)) > 0.01  # a generic complex instance
     assert len({tuple(np.round(x, 6)) for x in X1}) == 156
 
+
+
+def test_numeric_homogenization_of_quadratic_systems_equals_the_symbolic_one():
+    """HomogenizedQuadratic (y0^2 F(y/y0) from F at y, -y, 0) against the sympy-built homogenized system, at
+    random complex points (y0 = 0 included) and parameters, for the DGP families with 2 and 4 taut cables."""
+    from cdpr_algebra.dgp import fast_family
+    from cdpr_algebra.homotopy.projective import HomogenizedQuadratic, projectivize
+
+    rng = np.random.default_rng(3)
+    for m in (2, 4):
+        fast = fast_family(m)
+        sym, c = projectivize(fast.family)
+        num, c2 = projectivize(fast)
+        assert isinstance(num, HomogenizedQuadratic) and np.array_equal(c, c2)
+        Y = rng.normal(size=(5, fast.n + 1)) + 1j * rng.normal(size=(5, fast.n + 1))
+        Y[0, 0] = 0
+        P = rng.normal(size=(5, fast.m)) + 1j * rng.normal(size=(5, fast.m))
+        for a, b in zip(sym.evaluate_all(Y, P), num.evaluate_all(Y, P)):
+            assert np.max(np.abs(a - b)) <= 1e-12 * (1 + np.max(np.abs(a)))
+
+
+def test_directional_parameter_derivatives_equal_the_full_parameter_jacobian():
+    """evaluate_directional (central differences, exact for equations quadratic in the parameters) equals
+    dF/dp . dp from the full parameter Jacobian, for the DGP family and its numeric homogenization."""
+    from cdpr_algebra.dgp import fast_family
+    from cdpr_algebra.homotopy.projective import projectivize
+
+    rng = np.random.default_rng(5)
+    fast = fast_family(3)
+    proj, _ = projectivize(fast)
+    for system in (fast, proj):
+        X = rng.normal(size=(6, system.n)) + 1j * rng.normal(size=(6, system.n))
+        P = rng.normal(size=(6, system.m)) + 1j * rng.normal(size=(6, system.m))
+        dP = rng.normal(size=(6, system.m)) + 1j * rng.normal(size=(6, system.m))
+        F, J, JP = system.evaluate_all(X, P)
+        F2, J2, Ht = system.evaluate_directional(X, P, dP)
+        assert np.array_equal(F, F2) and np.array_equal(J, J2)
+        ref = np.einsum("nik,nk->ni", JP, dP)
+        assert np.max(np.abs(Ht - ref)) <= 1e-12 * (1 + np.max(np.abs(ref)))

@@ -105,6 +105,9 @@ class ParameterHomotopy:
 
     def evaluate_all(self, x, t):
         p, dp = self.parameters_at(t)
+        directional = getattr(self.system, "evaluate_directional", None)
+        if directional is not None:  # F, dF/dx and dF/dp . dp without the full dF/dp
+            return directional(x, p, dp)
         F, J, JP = self.system.evaluate_all(x, p)
         return F, J, np.einsum("nik,nk->ni", JP, dp)
 

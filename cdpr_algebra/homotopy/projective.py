@@ -15,14 +15,110 @@ from .systems import PolynomialSystem
 _CACHE: dict[tuple, tuple] = {}
 
 
-def projectivize(system: PolynomialSystem, seed: int = 20131) -> tuple[PolynomialSystem, np.ndarray]:
-    """(homogenized system with unknowns (y0, y), chart coefficients c (n + 1,)); cached per system and seed."""
-    key = (system.hash, seed)
+def _chart(n: int, seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    c = rng.normal(size=n + 1) + 1j * rng.normal(size=n + 1)
+    return c / np.linalg.norm(c)
+
+
+class HomogenizedQuadratic:
+    """F_h(y0, y) = y0^2 F(y / y0) of a system whose equations all have degree 2, evaluated through the
+    system's own (fast) evaluators, plus the chart c . (y0, y) = 1.
+
+    Writing F(x) = C + L x + Q(x) (constant, linear, quadratic parts): F(y) - F(-y) = 2 L y,
+    F(y) + F(-y) = 2 (C + Q(y)), so F_h = y0^2 C + y0 L y + Q(y) needs F at y, -y and 0, and likewise
+    dF_h/dy = y0 L + DQ(y) from J(y) +- J(-y), dF_h/dy0 = 2 y0 C + L y and dF_h/dp from dF/dp at the three
+    points.  No symbolic work, so it serves hand-written evaluators (e.g. the DGP's) at their speed.
+    """
+
+    def __init__(self, system, c: np.ndarray):
+        if any(d != 2 for d in system.degrees):
+            raise ValueError("HomogenizedQuadratic needs every equation of degree 2")
+        self.system, self.c = system, np.asarray(c, dtype=complex)
+        self.n, self.neq, self.m = system.n + 1, system.neq + 1, system.m
+        self.degrees = tuple(system.degrees) + (1,)
+        self.name = f"{getattr(system, 'name', 'system')}_projective"
+        self.hash = f"{getattr(system, 'hash', id(system))}:quadratic-projective"
+
+    def _parts(self, Y, p, kind):
+        Y = np.atleast_2d(np.asarray(Y, dtype=complex))
+        N = len(Y)
+        y0, y = Y[:, 0], Y[:, 1:]
+        pts = np.concatenate([y, -y, np.zeros_like(y)])
+        pp = None if p is None else np.asarray(p, dtype=complex)
+        if pp is not None and pp.ndim == 2:
+            pp = np.concatenate([pp, pp, pp])
+        if kind == 0:
+            out = (self.system.evaluate(pts, pp),)
+        elif kind == 1:
+            out = self.system.evaluate_and_jacobian(pts, pp)
+        else:
+            out = self.system.evaluate_all(pts, pp)
+        return N, y0, y, [(o[:N], o[N:2 * N], o[2 * N:]) for o in out]
+
+    def _assemble(self, Y, p, kind):
+        N, y0, y, parts = self._parts(Y, p, kind)
+        Fp, Fm, C = parts[0]
+        Ly = 0.5 * (Fp - Fm)
+        a = y0[:, None]
+        F = np.empty((N, self.neq), dtype=complex)
+        F[:, :-1] = a * a * C + a * Ly + 0.5 * (Fp + Fm) - C
+        F[:, -1] = Y @ self.c - 1
+        if kind == 0:
+            return (F,)
+        Jp, Jm, _ = parts[1]
+        J = np.zeros((N, self.neq, self.n), dtype=complex)
+        J[:, :-1, 0] = 2 * a * C + Ly
+        J[:, :-1, 1:] = a[:, :, None] * 0.5 * (Jp + Jm) + 0.5 * (Jp - Jm)
+        J[:, -1, :] = self.c
+        if kind == 1:
+            return F, J
+        Pp, Pm, P0 = parts[2]
+        JP = np.zeros((N, self.neq, self.m), dtype=complex)
+        aa = a[:, :, None]
+        JP[:, :-1, :] = aa * aa * P0 + aa * 0.5 * (Pp - Pm) + 0.5 * (Pp + Pm) - P0
+        return F, J, JP
+
+    def evaluate(self, Y, p=None):
+        return self._assemble(Y, p, 0)[0]
+
+    def evaluate_and_jacobian(self, Y, p=None):
+        return self._assemble(Y, p, 1)
+
+    def evaluate_all(self, Y, p=None):
+        return self._assemble(Y, p, 2)
+
+    def evaluate_directional(self, Y, p, dp):
+        """F_h, dF_h/dy and dF_h/dp . dp (same combination of the system's directional derivatives)."""
+        if not hasattr(self.system, "evaluate_directional"):
+            F, J, JP = self.evaluate_all(Y, p)
+            return F, J, np.einsum("nik,nk->ni", JP, dp)
+        F, J = self._assemble(Y, p, 1)
+        Y = np.atleast_2d(np.asarray(Y, dtype=complex))
+        N = len(Y)
+        y0, y = Y[:, 0:1], Y[:, 1:]
+        p3 = np.concatenate([p, p, p]) if np.ndim(p) == 2 else p
+        dp3 = np.concatenate([dp, dp, dp]) if np.ndim(dp) == 2 else dp
+        D = self.system.evaluate_directional(np.concatenate([y, -y, np.zeros_like(y)]), p3, dp3)[2]
+        Dp, Dm, D0 = D[:N], D[N:2 * N], D[2 * N:]
+        Ht = np.zeros((N, self.neq), dtype=complex)
+        Ht[:, :-1] = y0 * y0 * D0 + y0 * 0.5 * (Dp - Dm) + 0.5 * (Dp + Dm) - D0
+        return F, J, Ht
+
+
+def projectivize(system, seed: int = 20131) -> tuple:
+    """(homogenized system with unknowns (y0, y), chart coefficients c (n + 1,)); cached per system and seed.
+
+    A system that is not a compiled :class:`PolynomialSystem` (a hand-written fast evaluator) and whose
+    equations all have degree 2 is homogenized numerically (:class:`HomogenizedQuadratic`); otherwise the
+    homogenized equations are built with sympy and compiled."""
+    key = (system.hash, seed, isinstance(system, PolynomialSystem))
     if key in _CACHE:
         return _CACHE[key]
-    rng = np.random.default_rng(seed)
-    c = rng.normal(size=system.n + 1) + 1j * rng.normal(size=system.n + 1)
-    c /= np.linalg.norm(c)
+    c = _chart(system.n, seed)
+    if not isinstance(system, PolynomialSystem) and all(d == 2 for d in system.degrees):
+        _CACHE[key] = (HomogenizedQuadratic(system, c), c)
+        return _CACHE[key]
     y0 = sp.Symbol("_y0")
     ys = [sp.Symbol(f"_y_{v}") for v in system.variables]
     eqs = []
