@@ -15,7 +15,7 @@ endgame, double precision) with that interpreter (e.g. a venv with ``pip install
 ``--peer-dgp`` includes the DGP for the peers (slow: PHCpack tracks 1984 paths, Bertini 4096). Peer endpoints
 are counted only after our own evaluation of the equations confirms them (residual <= 1e-8 relative):
 Bertini's parser is known to misread a leading "- " (../shared/PEERS.md), so equations are written with
-every term in parentheses. ``--regenerate`` recomputes the generic instance by monodromy (about 1.5
+every term in parentheses. ``--regenerate`` runs derivations/solve_generic_dgp3.py (monodromy, about 1.5
 minutes) and rewrites the data file.
 """
 
@@ -37,11 +37,12 @@ import sympy as sp
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "derivations"))
 
 from cdpr_algebra.robot import load_robot  # noqa: E402
 from cdpr_algebra.homotopy import SolveOptions, TrackerOptions, solve, solve_parameter_homotopy  # noqa: E402
 from cdpr_algebra.homotopy.families import cyclic, dgp3_family, dgp3_parameters, dgp3_poses, katsura  # noqa: E402
-from cdpr_algebra.homotopy.monodromy import MonodromyOptions, load_instance, monodromy_solve, save_instance  # noqa: E402
+from cdpr_algebra.homotopy.monodromy import load_instance  # noqa: E402
 
 DATA = ROOT / "cdpr_algebra" / "data" / "dgp3_generic.json"
 ROBOT = ROOT / "examples" / "seed000_test1.toml"
@@ -52,21 +53,6 @@ FAST = SolveOptions(tracker=TrackerOptions(predictor_tol=1e-4))
 
 def dgp_family():
     return dgp3_family()
-
-
-def regenerate(seed: int = 7):
-    S = dgp3_family()
-    robot = load_robot(ROBOT)
-    pr = dgp3_parameters(robot)
-    rng = np.random.default_rng(2024)
-    B = np.array([[3.5, 4, 5.5], [2.5, 4.5, 5.5], [2.5, 3.5, 5.5]]) + 0.3 * (rng.normal(size=(3, 3)) + 1j * rng.normal(size=(3, 3)))
-    x0 = np.concatenate([B.ravel(), 0.05 + 0.02 * (rng.normal(size=3) + 1j * rng.normal(size=3))])
-    pg = pr + 0.2 * (1 + abs(pr)) * (rng.normal(size=21) + 1j * rng.normal(size=21))
-    r = monodromy_solve(S, seed=seed, options=MonodromyOptions(), p_guess=pg, x0=x0)
-    print(r.summary_line())
-    save_instance(DATA, S, r.parameters, r.solutions,
-                  generated_by=f"benchmarks/bench_homotopy.py --regenerate (monodromy_solve seed {seed})",
-                  generic_count=156)
 
 
 def timed(fn, runs):
@@ -173,6 +159,8 @@ def main(argv=None):
     ap.add_argument("--regenerate", action="store_true", help="recompute the generic DGP instance by monodromy")
     args = ap.parse_args(argv)
     if args.regenerate or not DATA.exists():
+        from solve_generic_dgp3 import regenerate  # derivations/
+
         regenerate()
     rows = []
     peer_systems = []
