@@ -3,6 +3,7 @@
     cdpr igp ROBOT --orientation PHI_X PHI_Y PHI_Z [--degrees] [--exact] [--json]
     cdpr igp ROBOT --position X Y Z [--all] [--json]
     cdpr dgp ROBOT [--lengths L1 .. Ln] [--jobs N] [--json]
+    cdpr plot ROBOT [--lengths L1 .. Ln] [--out FILE.png|.svg] [--jobs N]     (see cli_plot.py)
 
 Exit status: 0 on success, 2 on bad input (one line on stderr naming the field and the problem).
 """
@@ -58,6 +59,9 @@ def build_parser() -> argparse.ArgumentParser:
                      help="cable lengths rho_1 .. rho_n (default: the robot file's)")
     dgp.add_argument("--jobs", type=int, default=None, help="worker processes (default: all cores)")
     dgp.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    from . import cli_plot
+
+    cli_plot.add_parser(sub)
     return p
 
 
@@ -109,21 +113,25 @@ def _run_igp(args) -> int:
     return 0
 
 
-def _run_dgp(args) -> int:
-    from .dgp import dgp, dgp_table
-    from .robot import load_robot
-
-    robot = load_robot(args.robot)
+def _dgp_lengths(args, robot) -> np.ndarray:
+    """The DGP's cable lengths: ``--lengths`` (checked) or the robot file's (used by dgp and plot)."""
     if args.lengths is not None:
         if len(args.lengths) != robot.n:
             raise CdprInputError("--lengths", f"expected {robot.n} cable lengths, got {len(args.lengths)}")
         if any(v <= 0 for v in args.lengths):
             raise CdprInputError("--lengths", "cable lengths must be > 0")
-        lengths = np.array(args.lengths)
-    elif robot.lengths is not None:
-        lengths = robot.lengths
-    else:
-        raise CdprInputError("--lengths", "no cable lengths: the robot file has none and --lengths is not given")
+        return np.array(args.lengths)
+    if robot.lengths is not None:
+        return robot.lengths
+    raise CdprInputError("--lengths", "no cable lengths: the robot file has none and --lengths is not given")
+
+
+def _run_dgp(args) -> int:
+    from .dgp import dgp, dgp_table
+    from .robot import load_robot
+
+    robot = load_robot(args.robot)
+    lengths = _dgp_lengths(args, robot)
     if args.jobs is not None and args.jobs < 1:
         raise CdprInputError("--jobs", f"expected a number >= 1, got {args.jobs}")
 
@@ -149,6 +157,10 @@ def main(argv=None) -> int:
             return _run_igp(args)
         if args.command == "dgp":
             return _run_dgp(args)
+        if args.command == "plot":
+            from . import cli_plot
+
+            return cli_plot.run(args)
     except CdprInputError as err:
         print(f"cdpr: error: {err}", file=sys.stderr)
         return 2

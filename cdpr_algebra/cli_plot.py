@@ -1,0 +1,65 @@
+"""``cdpr plot ROBOT [--lengths L1 .. Ln] [--out FILE.png|.svg] [--jobs N]``: run the DGP and draw its admissible
+equilibria (:func:`.plot.plot_equilibria`), one panel per equilibrium, into a PNG or SVG file.
+
+The table of ``cdpr dgp`` goes to stdout, then the file written; progress to stderr.  Default output file:
+``<robot file stem>_equilibria.png`` in the current directory.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from .errors import CdprInputError
+
+SUFFIXES = (".png", ".svg")
+
+
+def add_parser(subparsers) -> None:
+    from .cli import _finite
+
+    p = subparsers.add_parser("plot", help="run the DGP and draw its admissible equilibria (PNG or SVG)")
+    p.add_argument("robot", help="robot file (.json or .toml)")
+    p.add_argument("--lengths", nargs="+", type=_finite("--lengths"), metavar="L",
+                   help="cable lengths rho_1 .. rho_n (default: the robot file's)")
+    p.add_argument("--out", default=None, metavar="FILE",
+                   help="output file, .png or .svg (default: <robot file stem>_equilibria.png)")
+    p.add_argument("--jobs", type=int, default=None, help="worker processes (default: all cores)")
+
+
+def output_path(out: str | None, robot_file: str) -> Path:
+    """The file to write: ``out`` checked (suffix .png / .svg, existing directory), or the default name."""
+    path = Path(out) if out is not None else Path(f"{Path(robot_file).stem}_equilibria.png")
+    if path.suffix.lower() not in SUFFIXES:
+        raise CdprInputError("--out", f"expected a file name ending in .png or .svg, got {str(path)!r}")
+    if not path.parent.is_dir():
+        raise CdprInputError("--out", f"directory {str(path.parent)!r} does not exist")
+    return path
+
+
+def run(args) -> int:
+    from .cli import _dgp_lengths
+    from .dgp import dgp, dgp_table
+    from .plot import plot_equilibria
+    from .robot import load_robot
+
+    out = output_path(args.out, args.robot)
+    robot = load_robot(args.robot)
+    lengths = _dgp_lengths(args, robot)
+    if args.jobs is not None and args.jobs < 1:
+        raise CdprInputError("--jobs", f"expected a number >= 1, got {args.jobs}")
+
+    def progress(sub, done, total):
+        what = f"skipped ({sub.skipped})" if sub.skipped else f"{sub.admissible} admissible"
+        print(f"[{done}/{total}] taut {list(sub.taut)}: {what}, {sub.seconds:.2f} s", file=sys.stderr, flush=True)
+
+    result = dgp(robot, lengths, jobs=args.jobs, progress=progress)
+    print(f"{robot.name}: DGP, lengths {', '.join(f'{v:g}' for v in lengths)}")
+    print(dgp_table(result, robot.n))
+    fig = plot_equilibria(robot, result.solutions)
+    try:
+        fig.savefig(out, dpi=110)
+    except OSError as err:
+        raise CdprInputError("--out", f"cannot write {str(out)!r}: {err.strerror or err}") from None
+    print(f"wrote {out} ({len(result.solutions)} panel(s))")
+    return 0
