@@ -22,6 +22,7 @@ import numpy as np
 from .endgame import SolveOptions, duplicate_groups
 from .projective import from_chart, projectivize, to_chart
 from .results import AT_INFINITY, FAILURES, SINGULAR, SUCCESS, Solution, SolveResult, TrackResult
+from .homotopies import ParameterHomotopy
 from .start_systems import multi_homogeneous, parameter_homotopy, random_gamma, total_degree
 from .systems import PolynomialSystem
 from .tracker import track_paths
@@ -108,10 +109,10 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
     """Track the solutions of F(x; p1) = 0 to F(x; p0) = 0 (see :func:`.start_systems.parameter_homotopy`).
 
     Paths that fail, or that end on the same point as another path (a sign of path jumping), are tracked
-    again from their start points in projective coordinates (:mod:`.projective`) through a fresh random
-    complex detour, with step control tightened 10x, 100x, ... from the second round on, up to ``retries``
-    rounds; a path
-    keeps the first successful, distinct endpoint it reaches (``retried`` says it was re-run).
+    again from their start points in projective coordinates (:mod:`.projective`) along the same parameter
+    path, with step control tightened 10x, 100x, ..., up to ``retries`` rounds; a path keeps the first
+    successful, distinct endpoint it reaches (``retried`` says it was re-run).  (Re-tracking a subset of
+    paths along another route would not do: its paths may end on solutions that other paths already reached.)
     """
     options = options or SolveOptions()
     rng = np.random.default_rng(seed)
@@ -126,9 +127,11 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
         if not redo:
             break
         # re-track in projective coordinates (large-norm solutions become ordinary points of a random chart)
-        homs = parameter_homotopy(proj, start_parameters, target_parameters, rng=rng, detour=True)
+        # along the SAME parameter path: paths of one homotopy end on distinct solutions, but a path re-tracked
+        # along another route (a new detour) may legitimately end on a solution another path already reached
+        phoms = [ParameterHomotopy(proj, h.p1, h.p0, gamma=h.gamma) for h in homs]
         tight = replace(options, tracker=options.tracker.tightened(10.0 ** (round_ + 1)))
-        again = _track_segments(proj, homs, to_chart(X[redo], chart), tight, seed + 1 + round_)
+        again = _track_segments(proj, phoms, to_chart(X[redo], chart), tight, seed + 1 + round_)
         for i, q in zip(redo, again):
             x, finite = from_chart(q.endpoint[None, :])
             status = q.status
