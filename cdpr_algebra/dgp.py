@@ -12,12 +12,12 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   to the scale of the stored sets: base centred at the centroid c of the exit points, world frame turned by
   Rw so that the load acts along -z, lengths divided by L = ``robot.size``, load Q d replaced by -z; then
   p = c + L Rw^T p^, R = Rw^T R^, lam = Q lam^ / L, tau_i = lam_i rho_i.
-  Tracking is a fast first pass (vectorized evaluators :class:`FastTautSystem`, no retries); a path failing in
+  Tracking uses vectorized evaluators (:class:`FastTautSystem`; predictor tolerance 1e-4); a path failing in
   the endgame zone (|t| <= 0.1) beyond 1000 robot sizes (|x| > ``DIVERGED_NORM`` in normalized coordinates,
   while every admissible equilibrium has |x| < ~10) is counted as diverging to a solution at infinity (special
   geometries, e.g. coplanar base and platform, have some), not as failed.  Any other suspect path (failed, or
-  ending on another path's endpoint) makes the subproblem re-run with the engine's retries (projective
-  re-tracking through random detours, tightened steps).  If failed paths remain, the subproblem is re-run once
+  ending on another path's endpoint) is re-tracked by the engine in projective coordinates along the same
+  parameter path with tightened steps.  If failed paths remain, the subproblem is re-run once
   with a random gamma and another seed and the run with fewer failures is kept; remaining failures are
   reported (``failed_paths``), never hidden.
 
@@ -30,6 +30,8 @@ rho_i, rho_j of A_i, A_j: taut or slack); two taut cables also need |rho_i - rho
 real (imaginary parts <= 1e-6 in the normalized, unit-size coordinates); a proper rotation
 (|R^T R - I| <= 1e-6, det R > 0); tensions tau_i >= -tol with tol = 1e-9 Q; every other cable slack:
 |B_j - A_j| <= rho_j (1 + 1e-9).  Stability: class of the reduced Hessian (:mod:`.stability`), stable = '>'.
+**Certification** (:mod:`.certify`): every admissible solution gets an interval certificate (Krawczyk:
+existence and uniqueness in a box of relative width <= 1e-9, tension signs, slack margins, Hessian class).
 
 **Deduplication rule.** An equilibrium is reported once, in the subproblem with the fewest taut cables:
 a solution of subproblem S with a tension |tau_i| <= tol is not reported by S (it is the solution of
@@ -359,29 +361,27 @@ DIVERGED_NORM = 1e3  # normalized coordinates: the robot has size 1, every admis
 
 
 def _track(fam, m, target, seed, gamma):
-    """Parameter homotopy from the stored generic set. A first pass without retries; a path that fails with
-    |x| > DIVERGED_NORM (a thousand robot sizes) in the endgame zone is counted as diverging (going to a solution
-    at infinity, which special geometries such as coplanar bases and platforms have), not as failed. If any other
-    path is suspect (failed, or ending on the same point as another), the subproblem is re-run with the engine's
-    retries (projective re-tracking through a random detour, tightened steps)."""
+    """Parameter homotopy from the stored generic set.  A path that fails with |x| > DIVERGED_NORM (a thousand
+    robot sizes) in the endgame zone is counted as diverging (going to a solution at infinity, which special
+    geometries such as coplanar bases and platforms have), not as failed; every other suspect path (failed, or
+    ending on the same point as another) is re-tracked by the engine (projective coordinates, same parameter
+    path, tightened steps)."""
     from .homotopy.endgame import SolveOptions
     from .homotopy.results import FAILURES
-    from .homotopy.solve import _suspects, solve_parameter_homotopy
+    from .homotopy.tracker import TrackerOptions
+    from .homotopy.solve import solve_parameter_homotopy
 
     p_gen, X_gen = _generic(m)
-    # no in-place double / mpmath retries (slow); solve_parameter_homotopy re-tracks suspect paths in
-    # projective coordinates, where paths to infinity end there
-    options = SolveOptions(retry_tight=False, retry_mpmath=False)
-    res = solve_parameter_homotopy(fast_family(m), p_gen, X_gen, target, seed=seed, gamma=gamma, options=options,
-                                   retries=0)
 
     def diverging(p):
         return p.status in FAILURES and abs(p.t) <= 0.1 + 1e-12 and np.max(np.abs(p.endpoint)) > DIVERGED_NORM
 
-    suspects = [i for i in _suspects(res.track.paths, options.duplicate_tol) if not diverging(res.track.paths[i])]
-    if suspects:
-        res = solve_parameter_homotopy(fast_family(m), p_gen, X_gen, target, seed=seed, gamma=gamma,
-                                       options=options)
+    # no in-place double / mpmath retries (slow): suspect paths are re-tracked in projective coordinates.
+    # Predictor tolerance 1e-4 (default 1e-5): paths from the stored generic set are nonsingular, and any two
+    # paths ending on one point are re-tracked with tightened steps (path jumping cannot go unnoticed)
+    options = SolveOptions(tracker=TrackerOptions(predictor_tol=1e-4), retry_tight=False, retry_mpmath=False)
+    res = solve_parameter_homotopy(fast_family(m), p_gen, X_gen, target, seed=seed, gamma=gamma, options=options,
+                                   ignore=diverging)
     failed = sum(1 for p in res.track.paths if p.status in FAILURES and not diverging(p))
     return res, failed
 

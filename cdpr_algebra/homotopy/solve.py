@@ -105,7 +105,7 @@ def _suspects(paths, tol):
 
 def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_solutions, target_parameters,
                              seed: int = 0, options: SolveOptions | None = None, detour: bool = False,
-                             gamma: bool = False, retries: int = 3) -> SolveResult:
+                             gamma: bool = False, retries: int = 3, ignore=None) -> SolveResult:
     """Track the solutions of F(x; p1) = 0 to F(x; p0) = 0 (see :func:`.start_systems.parameter_homotopy`).
 
     Paths that fail, or that end on the same point as another path (a sign of path jumping), are tracked
@@ -113,6 +113,7 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
     path, with step control tightened 10x, 100x, ..., up to ``retries`` rounds; a path keeps the first
     successful, distinct endpoint it reaches (``retried`` says it was re-run).  (Re-tracking a subset of
     paths along another route would not do: its paths may end on solutions that other paths already reached.)
+    ``ignore(path) -> bool`` exempts paths from the retries (e.g. the DGP's paths diverging to infinity).
     """
     options = options or SolveOptions()
     rng = np.random.default_rng(seed)
@@ -123,7 +124,7 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
     if retries:
         proj, chart = projectivize(system)
     for round_ in range(retries):
-        redo = _suspects(paths, options.duplicate_tol)
+        redo = [i for i in _suspects(paths, options.duplicate_tol) if ignore is None or not ignore(paths[i])]
         if not redo:
             break
         # re-track in projective coordinates (large-norm solutions become ordinary points of a random chart)
