@@ -158,11 +158,12 @@ def main(argv=None) -> int:
     ap.add_argument("--extra", type=int, default=2, help="extra monodromy loops that must find nothing new")
     ap.add_argument("--rebase", action="store_true", help="move the stored sets to a better start point")
     ap.add_argument("--candidates", type=int, default=4)
+    ap.add_argument("--noise", type=float, default=0.1, help="relative complex noise of the rebase candidates")
     args = ap.parse_args(argv)
     status = 0
     for m in args.m:
         if args.rebase:
-            out = rebase(m, seed=args.seed, candidates=args.candidates)
+            out = rebase(m, seed=args.seed, candidates=args.candidates, noise=args.noise)
             if out is None:
                 print(f"m = {m}: no candidate kept every solution: NOT stored", flush=True)
                 status = 1
