@@ -4,6 +4,9 @@
     cdpr igp ROBOT --position X Y Z [--all] [--json]
     cdpr dgp ROBOT [--lengths L1 .. Ln] [--jobs N] [--json]
     cdpr plot ROBOT [--lengths L1 .. Ln] [--out FILE.png|.svg] [--jobs N]     (see cli_plot.py)
+    cdpr cc ROBOT --position X Y Z [--angles ..] [--configuration ..] [--ball R] [--uncertainty DA DB DRHO] [--json]
+                                                                               (see cli_cc.py)
+    cdpr crosscheck ROBOT [--lengths L1 .. Ln] [--taut C1 .. Cm] [--json]     (see cli_crosscheck.py)
 
 Exit status: 0 on success, 2 on bad input (one line on stderr naming the field and the problem).
 """
@@ -62,6 +65,12 @@ def build_parser() -> argparse.ArgumentParser:
     from . import cli_plot
 
     cli_plot.add_parser(sub)
+    from . import cli_cc
+
+    cli_cc.add_parser(sub)
+    from . import cli_crosscheck
+
+    cli_crosscheck.add_parser(sub)
     return p
 
 
@@ -137,7 +146,8 @@ def _run_dgp(args) -> int:
 
     def progress(sub, done, total):
         what = f"skipped ({sub.skipped})" if sub.skipped else \
-            f"{sub.paths} paths, {sub.real} real, {sub.admissible} admissible, {sub.failed_paths} failed"
+            f"{sub.paths} paths, {sub.real} real, {sub.admissible} admissible, {sub.failed_paths} failed" + \
+            (f", {sub.diverging} diverging" if sub.diverging else "")
         print(f"[{done}/{total}] taut {list(sub.taut)}: {what}, {sub.seconds:.2f} s", file=sys.stderr, flush=True)
 
     result = dgp(robot, lengths, jobs=args.jobs, progress=progress)
@@ -161,6 +171,14 @@ def main(argv=None) -> int:
             from . import cli_plot
 
             return cli_plot.run(args)
+        if args.command == "cc":
+            from . import cli_cc
+
+            return cli_cc.run(args)
+        if args.command == "crosscheck":
+            from . import cli_crosscheck
+
+            return cli_crosscheck.run(args)
     except CdprInputError as err:
         print(f"cdpr: error: {err}", file=sys.stderr)
         return 2

@@ -131,11 +131,12 @@ class DGPSubproblem:
     failed_paths: int
     seconds: float
     skipped: str | None = None
+    diverging: int = 0  # paths beyond 1000 robot sizes (or 1000 loads of tension) near t = 0: not followed
 
     def to_dict(self) -> dict:
         return {"taut": list(self.taut), "paths": self.paths, "finite": self.finite, "real": self.real,
                 "admissible": self.admissible, "failed_paths": self.failed_paths, "seconds": self.seconds,
-                "skipped": self.skipped}
+                "skipped": self.skipped, "diverging": self.diverging}
 
 
 @dataclass(frozen=True)
@@ -361,20 +362,23 @@ DIVERGED_NORM = 1e3  # normalized coordinates: the robot has size 1, every admis
 
 
 def _track(fam, m, target, seed, gamma):
-    """Parameter homotopy from the stored generic set.  A path that fails with |x| > DIVERGED_NORM (a thousand
-    robot sizes) in the endgame zone is counted as diverging (going to a solution at infinity, which special
-    geometries such as coplanar bases and platforms have), not as failed; every other suspect path (failed, or
-    ending on the same point as another) is re-tracked by the engine (projective coordinates, same parameter
-    path, tightened steps)."""
+    """Parameter homotopy from the stored generic set.  Returns (result, failed paths, diverging paths).  A path
+    beyond |x| > DIVERGED_NORM (a thousand robot sizes, or tensions of a thousand loads) that fails in the endgame
+    zone or ends on a singular point is counted as diverging (going to or near a solution at infinity, which
+    special geometries such as coplanar bases and platforms or nearly coincident anchors have), not as failed,
+    and is not re-tracked; every other suspect path (failed, or ending on the same point as another) is
+    re-tracked by the engine (projective coordinates, same parameter path, tightened steps)."""
     from .homotopy.endgame import SolveOptions
-    from .homotopy.results import FAILURES
+    from .homotopy.results import FAILURES, SINGULAR
     from .homotopy.tracker import TrackerOptions
     from .homotopy.solve import solve_parameter_homotopy
 
     p_gen, X_gen = _generic(m)
 
     def diverging(p):
-        return p.status in FAILURES and abs(p.t) <= 0.1 + 1e-12 and np.max(np.abs(p.endpoint)) > DIVERGED_NORM
+        if not np.max(np.abs(p.endpoint)) > DIVERGED_NORM:
+            return False
+        return p.status == SINGULAR or (p.status in FAILURES and abs(p.t) <= 0.1 + 1e-12)
 
     # no in-place double / mpmath retries (slow): suspect paths are re-tracked in projective coordinates.
     # Predictor tolerance 1e-4 (default 1e-5): paths from the stored generic set are nonsingular, and any two
@@ -383,7 +387,7 @@ def _track(fam, m, target, seed, gamma):
     res = solve_parameter_homotopy(fast_family(m), p_gen, X_gen, target, seed=seed, gamma=gamma, options=options,
                                    ignore=diverging)
     failed = sum(1 for p in res.track.paths if p.status in FAILURES and not diverging(p))
-    return res, failed
+    return res, failed, sum(1 for p in res.track.paths if diverging(p))
 
 
 def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True):
@@ -413,11 +417,11 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0):
                              f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})"), []
     fam = taut_family(m)
     target, c, L, Rw = _normalized(robot, rho, cables)
-    res, failed = _track(fam, m, target, seed, gamma=False)
+    res, failed, diverging = _track(fam, m, target, seed, gamma=False)
     if failed:
-        res2, failed2 = _track(fam, m, target, seed + 7919, gamma=True)
+        res2, failed2, diverging2 = _track(fam, m, target, seed + 7919, gamma=True)
         if failed2 < failed:
-            res, failed = res2, failed2
+            res, failed, diverging = res2, failed2, diverging2
     X = np.array([s.x for s in res.solutions]).reshape(-1, fam.n)
     finite = len(X)
     real = np.all(np.abs(X.imag) <= REAL_TOL * (1 + np.abs(X.real)), axis=1) if finite else np.zeros(0, bool)
@@ -452,7 +456,7 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0):
         cls = _classify(robot, rho, cables, p, R, tau_S)
         sols.append(DGPSolution(taut1, p, R, tau, cls))
     sub = DGPSubproblem(taut1, len(res.track.paths), finite, int(np.sum(real)), len(sols), failed,
-                        time.perf_counter() - t0)
+                        time.perf_counter() - t0, diverging=diverging)
     return sub, sols
 
 

@@ -5,6 +5,7 @@ tests/test_derivations.py):
 
     python derivations/solve_generic_dgp.py --m 2 3          # writes cdpr_algebra/data/dgp_generic_m{m}.json
     python derivations/solve_generic_dgp.py --rebase --m 3   # moves the stored set to a better start point
+    python derivations/solve_generic_dgp.py --m 4 --near-regular 0.3   # monodromy directly near regular_robot
 
 Method (see :mod:`cdpr_algebra.homotopy.monodromy`):
 
@@ -119,14 +120,18 @@ def rebase(m: int, seed: int = 1, candidates: int = 4, noise: float = 0.1, verbo
     return pstar, X, meta
 
 
-def solve_generic(m: int, seed: int = 1, extra: int = 2, verbose: bool = True):
+def solve_generic(m: int, seed: int = 1, extra: int = 2, verbose: bool = True, near_regular: float | None = None):
     fam = fast_family(m)  # same equations as taut_family(m), faster vectorized evaluators
     rng = np.random.default_rng(seed)
     R = complex_rotation(rng)
     p = 0.3 * (rng.normal(size=3) + 1j * rng.normal(size=3))
     lam = rng.normal(size=m) + 1j * rng.normal(size=m)
     x0 = encode(p, R, lam)
-    guess = unit_robot_guess(m, rng)
+    if near_regular is None:
+        guess = unit_robot_guess(m, rng)
+    else:  # the start point of --rebase, reached directly by monodromy
+        base = regular_robot(m)
+        guess = base + near_regular * (np.abs(base) + 0.1) * (rng.normal(size=base.size) + 1j * rng.normal(size=base.size))
     t0 = time.perf_counter()
     res = monodromy_solve(fam, seed=seed, x0=x0, p_guess=guess,
                           options=MonodromyOptions(target_solutions_count=PUBLISHED[m], max_loops=60))
@@ -157,6 +162,8 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--extra", type=int, default=2, help="extra monodromy loops that must find nothing new")
     ap.add_argument("--rebase", action="store_true", help="move the stored sets to a better start point")
+    ap.add_argument("--near-regular", type=float, default=None, metavar="NOISE",
+                    help="monodromy at a point near regular_robot(m) (relative complex noise NOISE)")
     ap.add_argument("--candidates", type=int, default=4)
     ap.add_argument("--noise", type=float, default=0.1, help="relative complex noise of the rebase candidates")
     args = ap.parse_args(argv)
@@ -173,7 +180,9 @@ def main(argv=None) -> int:
                   f"{meta['max_jacobian_condition']:.1e}: stored", flush=True)
             save_instance(path_for(m), taut_family(m), params, X, **meta)
             continue
-        params, X, meta = solve_generic(m, seed=args.seed, extra=args.extra)
+        params, X, meta = solve_generic(m, seed=args.seed, extra=args.extra, near_regular=args.near_regular)
+        if args.near_regular is not None:
+            meta["start_point"] = {"base": "regular_robot", "noise": args.near_regular}
         ok = len(X) == PUBLISHED[m] and meta["check"]["new_solutions"] == 0
         print(f"m = {m}: {len(X)} solutions (published {PUBLISHED[m]}), residual {meta['max_residual']:.1e}, "
               f"max cond {meta['max_jacobian_condition']:.1e}, {meta['seconds']:.1f} s: "

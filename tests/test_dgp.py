@@ -184,7 +184,8 @@ def test_cli_json_contract(tmp_path, capsys):
     assert set(out) == {"solutions", "subproblems", "seconds"}
     assert len(out["subproblems"]) == 3 and "[3/3]" in cap.err
     for sub in out["subproblems"]:
-        assert set(sub) == {"taut", "paths", "finite", "real", "admissible", "failed_paths", "seconds", "skipped"}
+        assert set(sub) == {"taut", "paths", "finite", "real", "admissible", "failed_paths", "seconds", "skipped",
+                            "diverging"}
     keys = {"taut", "position", "angles", "rotation", "tensions", "hessian", "stable", "certified", "certificate"}
     assert out["solutions"]
     for sol in out["solutions"]:

@@ -211,8 +211,8 @@ def test_dgp_parameter_homotopy_table1(dgp):
 
 def test_parameter_homotopy_20_random_points_generic_count(dgp):
     """20 random real robots around seed 000 Test 1 (each parameter moved by 5 % of its scale): always
-    156 nonsingular solutions, 0 failed (failed or coinciding paths are re-tracked through a new random
-    complex detour; the mpmath retry is off here because it takes minutes per 12-unknown path)."""
+    156 nonsingular solutions, 0 failed (failed or coinciding paths are re-tracked in projective coordinates
+    along the same parameter path; the mpmath retry is off here because it takes minutes per 12-unknown path)."""
     S, p1, X1, robot = dgp
     base = dgp3_parameters(robot)
     rng = np.random.default_rng(12)
