@@ -368,7 +368,7 @@ def _track(fam, m, target, seed, gamma):
     special geometries such as coplanar bases and platforms or nearly coincident anchors have), not as failed,
     and is not re-tracked; every other suspect path (failed, or ending on the same point as another) is
     re-tracked by the engine (projective coordinates, same parameter path, tightened steps)."""
-    from .homotopy.endgame import SolveOptions
+    from .homotopy.endgame import EndgameOptions, SolveOptions
     from .homotopy.results import FAILURES, SINGULAR
     from .homotopy.tracker import TrackerOptions
     from .homotopy.solve import solve_parameter_homotopy
@@ -383,7 +383,9 @@ def _track(fam, m, target, seed, gamma):
     # no in-place double / mpmath retries (slow): suspect paths are re-tracked in projective coordinates.
     # Predictor tolerance 1e-4 (default 1e-5): paths from the stored generic set are nonsingular, and any two
     # paths ending on one point are re-tracked with tightened steps (path jumping cannot go unnoticed)
-    options = SolveOptions(tracker=TrackerOptions(predictor_tol=1e-4), retry_tight=False, retry_mpmath=False)
+    # The Cauchy endgame gives up on paths beyond DIVERGED_NORM (counted as diverging below).
+    options = SolveOptions(tracker=TrackerOptions(predictor_tol=1e-4), endgame=EndgameOptions(give_up_norm=DIVERGED_NORM),
+                           retry_tight=False, retry_mpmath=False)
     res = solve_parameter_homotopy(fast_family(m), p_gen, X_gen, target, seed=seed, gamma=gamma, options=options,
                                    ignore=diverging)
     failed = sum(1 for p in res.track.paths if p.status in FAILURES and not diverging(p))

@@ -52,7 +52,10 @@ class EndgameOptions:
     * ``finite_residual`` [1e-6]: a Cauchy estimate with a larger relative residual is not a finite
       endpoint (the loop mean of a diverging Puiseux series is finite): the path is at infinity;
     * ``cluster_tol`` [1e-6]: finite endpoints of several paths closer than this (relative) are one
-      singular solution whose multiplicity is the number of those paths.
+      singular solution whose multiplicity is the number of those paths;
+    * ``give_up_norm`` [inf]: a path in the Cauchy endgame with |x| beyond this is not followed further
+      (status ``diverged``, its t and last point recorded): for callers that only want solutions of bounded
+      norm (the DGP: a thousand robot sizes).
     """
 
     endgame_start: float = 0.1
@@ -68,6 +71,7 @@ class EndgameOptions:
     refine_tol: float = 1e-13
     finite_residual: float = 1e-6
     cluster_tol: float = 1e-6
+    give_up_norm: float = float("inf")
 
     def to_dict(self):
         return asdict(self)
@@ -228,8 +232,14 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
         v = (ln - lognorm[-1]) / np.log(o.sample_ratio)
         lognorm.append(ln)
         vals.append(v)
-        big = np.max(np.abs(x[a]), axis=1) > o.at_infinity_norm
+        nx = np.max(np.abs(x[a]), axis=1)
+        big = nx > o.at_infinity_norm
         infl = big | (seg.status == DIVERGED)
+        give_up = ~infl & (nx > o.give_up_norm)
+        status[a[give_up]] = DIVERGED
+        xend[a[give_up]] = x[a[give_up]]
+        acc[a[give_up]] = np.nan
+        infl_or_out = infl | give_up
         if len(vals) >= 2:
             v1, v0 = vals[-1][a], vals[-2][a]
             stable = np.abs(v1 - v0) <= 0.1 * np.abs(v1) + 0.01
@@ -237,10 +247,10 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
         status[a[infl]] = AT_INFINITY
         xend[a[infl]] = x[a[infl]]
         acc[a[infl]] = np.nan
-        failed = (seg.status != SUCCESS) & ~infl
+        failed = (seg.status != SUCCESS) & ~infl_or_out
         status[a[failed]] = seg.status[failed]
         xend[a[failed]] = x[a[failed]]
-        a = a[~infl & ~failed]
+        a = a[~infl_or_out & ~failed]
         if k == 0 or not a.size:
             active = a
             continue

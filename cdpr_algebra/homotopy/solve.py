@@ -125,6 +125,8 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
         proj, chart = projectivize(system)
     for round_ in range(retries):
         redo = [i for i in _suspects(paths, options.duplicate_tol) if ignore is None or not ignore(paths[i])]
+        if round_ >= 1:  # a singular endpoint reached again in projective coordinates is an answer, not a failure
+            redo = [i for i in redo if paths[i].status != SINGULAR]
         if not redo:
             break
         # re-track in projective coordinates (large-norm solutions become ordinary points of a random chart)
