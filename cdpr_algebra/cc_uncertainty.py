@@ -323,9 +323,9 @@ def _unpack(P):
     return P[:18].reshape(6, 3), P[18:36].reshape(6, 3), P[36:42]
 
 
-def _sensitivity(robot, cables, R0, P, z):
-    """d lam / dP (6 x 42) at the equilibrium z of parameters P (implicit function theorem, finite differences of F
-    in P, which is only used to steer the search and the bisection)."""
+def _equilibrium_derivative(robot, cables, R0, P, z):
+    """d z / dP (12 x 42) at the equilibrium z = (G, e, lam) of parameters P (implicit function theorem, central
+    differences of F in P; only used to steer the search, the bisection and the size of the pose region)."""
     A, c, rho = _unpack(P)
     _, J = _system(R0, robot.load, robot.load_direction, A, c, rho)
     Jz = np.array(J(list(z)), dtype=float)
@@ -338,8 +338,12 @@ def _sensitivity(robot, cables, R0, P, z):
         Fp = _system(R0, robot.load, robot.load_direction, *_unpack(Pp))[0](list(z))
         Fm = _system(R0, robot.load, robot.load_direction, *_unpack(Pm))[0](list(z))
         FP[:, k] = (np.array(Fp, float) - np.array(Fm, float)) / (2 * h)
-    dz = -np.linalg.solve(Jz, FP)
-    return dz[6:12]
+    return -np.linalg.solve(Jz, FP)
+
+
+def _sensitivity(robot, cables, R0, P, z):
+    """d lam / dP (6 x 42) at the equilibrium z."""
+    return _equilibrium_derivative(robot, cables, R0, P, z)[6:12]
 
 
 def _search_counterexample(robot, cables, R0, P0, W, z0, rounds: int = 4):
@@ -396,8 +400,6 @@ def uncertainty_check(robot, position, cables, rotation=None, dA: float = 0.005,
         return result(False, None, None, _counterexample(robot, cables, R0, cand, z0), 0)
 
     # 2. one parametric Krawczyk test on the whole parameter box: existence, uniqueness and tensions at once
-    from flint import arb_mat
-
     Pb = np.array([arb(float(p), float(w)) for p, w in zip(P0, W0)], dtype=object)
     Ab, cb, rb = _unpack(Pb)
     Ab, cb, rb = Ab.tolist(), cb.tolist(), list(rb)
@@ -473,18 +475,7 @@ def _contract(mf, mb, lo, hi, rounds: int = 4):
 
 def _pose_sensitivity(robot, cables, R0, P, z):
     """d(G, e) / dP (6 x 42) at the equilibrium (first order; used to size the pose region)."""
-    A, c, rho = _unpack(P)
-    _, J = _system(R0, robot.load, robot.load_direction, A, c, rho)
-    Jz = np.array(J(list(z)), dtype=float)
-    FP = np.zeros((12, 42))
-    h = 1e-7
-    for k in range(42):
-        Pp, Pm = P.copy(), P.copy()
-        Pp[k] += h
-        Pm[k] -= h
-        FP[:, k] = (np.array(_system(R0, robot.load, robot.load_direction, *_unpack(Pp))[0](list(z)), float)
-                    - np.array(_system(R0, robot.load, robot.load_direction, *_unpack(Pm))[0](list(z)), float)) / (2 * h)
-    return (-np.linalg.solve(Jz, FP))[:6]
+    return _equilibrium_derivative(robot, cables, R0, P, z)[:6]
 
 
 def _pose_region_proof(robot, cables, R0, G, Ab, cb, rb, rp, re, max_boxes):

@@ -312,12 +312,6 @@ def test_igp_orientation_certificate_rejects_a_wrong_rotation():
     assert not c.certified and not c.exists_unique
 
 
-@pytest.fixture(scope="module")
-def table3():
-    robot = load_robot(ROOT / "examples" / "seed004_table3.toml")
-    return robot, igp_position(robot, [7, 9, 1])
-
-
 def test_igp_position_table3_all_certified(table3):
     robot, res = table3
     real = res.real_solutions

@@ -18,7 +18,6 @@ from cdpr_algebra import CdprInputError, load_robot
 from cdpr_algebra.cli import main
 from cdpr_algebra.dgp import DGPSolution
 from cdpr_algebra.igp_orientation import igp_orientation
-from cdpr_algebra.igp_position import igp_position
 from cdpr_algebra.plot import plot_equilibria, plot_igp_solutions, plot_radius_along_path
 from cdpr_algebra.robot import Robot
 
@@ -86,12 +85,6 @@ def test_plot_equilibria_empty_and_max_panels():
     robot = load_robot(ROOT / "examples" / "seed000_test2.toml")
     assert "no admissible" in panels(plot_equilibria(robot, []))[0].get_title()
     assert len(panels(plot_equilibria(robot, table_solutions("2"), max_panels=2))) == 2
-
-
-@pytest.fixture(scope="module")
-def table3():
-    robot = load_robot(ROOT / "examples" / "seed004_table3.toml")
-    return robot, igp_position(robot, [7, 9, 1])
 
 
 def test_plot_igp_solutions_position(table3):
