@@ -18,12 +18,16 @@ CLASSES = (">", ">=", "<", "<=", "<>")
 
 
 def skew_stack(v) -> np.ndarray:
-    """skew(v) for v (..., 3) -> (..., 3, 3)."""
+    """skew(v) for v (..., 3) -> (..., 3, 3) (written component by component: this is in the DGP's hot loop)."""
     v = np.asarray(v)
-    z = np.zeros_like(v[..., 0])
-    return np.stack([np.stack([z, -v[..., 2], v[..., 1]], -1),
-                     np.stack([v[..., 2], z, -v[..., 0]], -1),
-                     np.stack([-v[..., 1], v[..., 0], z], -1)], -2)
+    S = np.zeros(v.shape + (3,), dtype=v.dtype)
+    S[..., 0, 1] = -v[..., 2]
+    S[..., 0, 2] = v[..., 1]
+    S[..., 1, 0] = v[..., 2]
+    S[..., 1, 2] = -v[..., 0]
+    S[..., 2, 0] = -v[..., 1]
+    S[..., 2, 1] = v[..., 0]
+    return S
 
 
 def hessian(A, B, G, tensions, lengths) -> np.ndarray:
