@@ -112,10 +112,23 @@ def _peer_equations(S, p, power="^"):
 
 _BERTINI_SCRIPT = r"""
 import json, sys, time
+import re
 import bertini
 d = json.load(sys.stdin)
-text = "variable_group " + ", ".join(d["vars"]) + "; function " + ", ".join(f"f{i}" for i in range(len(d["eqs"]))) + "; "
-text += " ".join(f"f{i} = {e};" for i, e in enumerate(d["eqs"]))
+# Bertini 2's parser stops at multi-digit names (x10, f10: "more than one affine variable group"): letters only
+def letters(k):
+    s = ""
+    while True:
+        s = chr(97 + k % 26) + s
+        k = k // 26 - 1
+        if k < 0:
+            return s
+vs = ["v" + letters(i) for i in range(len(d["vars"]))]
+fs = ["f" + letters(i) for i in range(len(d["eqs"]))]
+idx = {v: i for i, v in enumerate(d["vars"])}
+eqs = [re.sub(r"\b[A-Za-z_]\w*\b", lambda m: vs[idx[m.group(0)]] if m.group(0) in idx else m.group(0), e) for e in d["eqs"]]
+text = "variable_group " + ", ".join(vs) + "; function " + ", ".join(fs) + "; "
+text += " ".join(f"{f} = {e};" for f, e in zip(fs, eqs))
 t = time.perf_counter()
 alg = bertini.nag_algorithm.ZeroDimCauchyDoublePrecisionTotalDegree(bertini.parse.system(text))
 alg.solve()
