@@ -472,6 +472,19 @@ def _merge(solutions, L):
     return out
 
 
+def lengths_and_taut_sets(robot, lengths=None, max_m: int = 6):
+    """(rho, every 0-based taut set of m = 1 .. min(n, 6, max_m) cables): the subproblems of a DGP (also of the
+    interval cross-check); ``lengths`` default to the robot's."""
+    if lengths is None:
+        if robot.lengths is None:
+            raise ValueError("no cable lengths: give lengths= or a robot with lengths")
+        lengths = robot.lengths
+    rho = np.asarray(lengths, dtype=float)
+    if rho.shape != (robot.n,) or np.any(rho <= 0):
+        raise ValueError(f"expected {robot.n} positive cable lengths")
+    return rho, [c for m in range(1, min(robot.n, 6, max_m) + 1) for c in itertools.combinations(range(robot.n), m)]
+
+
 def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int = 6, seed: int = 0,
         certify: bool = True) -> "DGPResult":
     """Every admissible equilibrium of ``robot`` with cable ``lengths`` (default: the robot's).
@@ -481,14 +494,7 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
     process after each finished subproblem; ``certify``: attach an interval certificate to every solution.
     """
     t0 = time.perf_counter()
-    if lengths is None:
-        if robot.lengths is None:
-            raise ValueError("no cable lengths: give lengths= or a robot with lengths")
-        lengths = robot.lengths
-    rho = np.asarray(lengths, dtype=float)
-    if rho.shape != (robot.n,) or np.any(rho <= 0):
-        raise ValueError(f"expected {robot.n} positive cable lengths")
-    sets = [c for m in range(1, min(robot.n, 6, max_m) + 1) for c in itertools.combinations(range(robot.n), m)]
+    rho, sets = lengths_and_taut_sets(robot, lengths, max_m)
     jobs = os.cpu_count() if jobs is None else max(1, int(jobs))
     results = {}
     heavy = [c for c in sets if len(c) >= 2 and generic_path(len(c)).exists()]
