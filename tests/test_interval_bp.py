@@ -1,0 +1,369 @@
+"""Interval branch and prune (issue 8): the outward-rounded arithmetic against exact rational arithmetic, the
+operators (Krawczyk, second-order form) on systems with known roots, equilibria built by construction, seed 000
+Test 1 (Table 1) and the cross-check with the homotopy DGP, and the ``cdpr crosscheck`` command."""
+
+import json
+from fractions import Fraction
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import cdpr_algebra.interval_boxes as ib
+from cdpr_algebra.interval_boxes import Interval, QuadraticSystem, inv_sqr, krawczyk, mr_matmul
+from cdpr_algebra.interval_bp import BPOptions, build_model, solve_taut_set_interval
+from cdpr_algebra.pose import rotation_taking
+from cdpr_algebra.robot import Robot, load_robot
+
+ROOT = Path(__file__).resolve().parent.parent
+TABLES = json.loads((ROOT / "tests" / "data" / "seed000_tables.json").read_text())["tables"]
+F = Fraction
+
+
+@pytest.fixture(params=["fast", "nextafter"])
+def rounding(request, monkeypatch):
+    monkeypatch.setattr(ib, "ROUNDING", request.param)
+    return request.param
+
+
+def _random_floats(rng, n):
+    """Floats of many magnitudes and signs, with exact zeros, tiny and huge values."""
+    x = rng.standard_normal(n) * 10.0 ** rng.integers(-20, 20, n)
+    x[rng.random(n) < 0.05] = 0.0
+    x[rng.random(n) < 0.03] = 1e-300 * rng.standard_normal()
+    return x
+
+
+def _random_intervals(rng, n):
+    a, b = _random_floats(rng, n), _random_floats(rng, n)
+    near = rng.random(n) < 0.5  # also narrow intervals (rounding matters most there)
+    b = np.where(near, a * (1 + 1e-15 * rng.random(n)), b)
+    return Interval(np.minimum(a, b), np.maximum(a, b))
+
+
+def _inside(v: Fraction, lo, hi) -> bool:
+    return F(float(lo)) <= v <= F(float(hi))
+
+
+def test_widening_is_at_least_one_ulp(rounding):
+    rng = np.random.default_rng(0)
+    x = np.concatenate([_random_floats(rng, 5000), [0.0, -0.0, 5e-324, -5e-324, 2.0 ** -1022, 1.7976931348623157e308,
+                                                   -1.7976931348623157e308, 1.0, -1.0, 0.1]])
+    with np.errstate(over="ignore"):
+        assert np.all(ib.down(x) <= np.nextafter(x, -np.inf))
+        assert np.all(ib.up(x) >= np.nextafter(x, np.inf))
+    assert ib.up(np.array([np.inf]))[0] == np.inf and ib.down(np.array([-np.inf]))[0] == -np.inf
+    # an empty interval (lo = +inf, hi = -inf) stays empty after widening
+    assert ib.up(np.array([-np.inf]))[0] < ib.down(np.array([np.inf]))[0]
+    # the fast widening stays tight: a few ulps for normal numbers
+    y = np.array([1.0, 3.0, 1e10, -7.5])
+    assert np.all(ib.up(y) <= np.nextafter(np.nextafter(np.nextafter(y, np.inf), np.inf), np.inf))
+
+
+@pytest.mark.parametrize("op", ["add", "sub", "mul", "div", "sqr", "sqrt"])
+def test_operations_enclose_exact_results(rounding, op):
+    """Enclosure property: the exact (rational) result at the endpoints and at random exact interior points lies in
+    the computed interval (for sqrt: lo^2 <= x and hi^2 >= x exactly)."""
+    rng = np.random.default_rng(1)
+    n = 400
+    a, b = _random_intervals(rng, n), _random_intervals(rng, n)
+    if op == "sqrt":
+        a = Interval(np.abs(a.lo), np.abs(a.lo) + np.abs(a.hi))
+    with np.errstate(all="ignore"):
+        r = {"add": lambda: a + b, "sub": lambda: a - b, "mul": lambda: a * b, "div": lambda: a / b,
+             "sqr": a.sqr, "sqrt": a.sqrt}[op]()
+    for k in range(n):
+        al, ah, bl, bh = (F(float(v)) for v in (a.lo[k], a.hi[k], b.lo[k], b.hi[k]))
+        t = F(int(rng.integers(0, 1000)), 1000)
+        xs = [al, ah, al + t * (ah - al)]
+        ys = [bl, bh, bl + t * (bh - bl)]
+        for x in xs:
+            if op == "sqr":
+                assert _inside(x * x, r.lo[k], r.hi[k])
+            elif op == "sqrt":
+                lo, hi = F(float(r.lo[k])), F(float(r.hi[k]))
+                assert lo >= 0 and lo * lo <= x <= hi * hi
+            else:
+                for y in ys:
+                    if op == "div" and (bl <= 0 <= bh):
+                        assert r.lo[k] == -np.inf and r.hi[k] == np.inf
+                        continue
+                    exact = {"add": x + y, "sub": x - y, "mul": x * y, "div": (x / y) if y else None}[op]
+                    if exact is not None and np.isfinite(r.lo[k]) and np.isfinite(r.hi[k]):
+                        assert _inside(exact, r.lo[k], r.hi[k]), (op, x, y, r.lo[k], r.hi[k])
+
+
+def test_operations_with_point_operands_and_sums(rounding):
+    rng = np.random.default_rng(2)
+    a = _random_intervals(rng, 300)
+    c = _random_floats(rng, 300)
+    r1, r2, r3 = a * c, a + c, c - a
+    s = Interval(a.lo[:, None], a.hi[:, None])
+    total = Interval(np.stack([a.lo, a.lo * 0 + 0.1, -a.hi], 1), np.stack([a.hi, a.hi * 0 + 0.1, -a.lo], 1)).sum()
+    for k in range(300):
+        for x in (F(float(a.lo[k])), F(float(a.hi[k]))):
+            cc = F(float(c[k]))
+            assert _inside(x * cc, r1.lo[k], r1.hi[k])
+            assert _inside(x + cc, r2.lo[k], r2.hi[k])
+            assert _inside(cc - x, r3.lo[k], r3.hi[k])
+            assert _inside(x + F(0.1) - x, total.lo[k], total.hi[k])  # x - x is not 0 in intervals: wide, valid
+    assert s.shape == (300, 1)
+
+
+def test_inv_sqr_projection_keeps_every_solution():
+    rng = np.random.default_rng(3)
+    x = Interval(rng.uniform(-3, 0, 500), rng.uniform(0, 3, 500))
+    y = Interval(rng.uniform(0, 2, 500), rng.uniform(2, 5, 500))
+    p = inv_sqr(y, x)
+    for k in range(500):
+        for t in np.linspace(x.lo[k], x.hi[k], 41):
+            if y.lo[k] <= t * t <= y.hi[k]:
+                assert p.lo[k] <= t <= p.hi[k]
+    # a hole: x in [-1, 1] with x^2 in [4, 9] is empty
+    e = inv_sqr(Interval(np.array([4.0]), np.array([9.0])), Interval(np.array([-1.0]), np.array([1.0])))
+    assert e.lo[0] > e.hi[0]
+
+
+def test_midpoint_radius_product_encloses_exact_products():
+    rng = np.random.default_rng(4)
+    A = rng.standard_normal((20, 5, 7)) * 10.0 ** rng.integers(-5, 5, (20, 5, 7))
+    Bm = rng.standard_normal((20, 7, 3))
+    Br = np.abs(rng.standard_normal((20, 7, 3))) * 1e-3
+    P = mr_matmul(A, None, Bm, Br)
+    for n in range(20):
+        for corner in range(4):
+            sign = rng.choice([-1.0, 1.0], size=(7, 3))
+            Bx = [[F(float(Bm[n, k, j])) + F(float(sign[k, j])) * F(float(Br[n, k, j])) for j in range(3)]
+                  for k in range(7)]
+            for i in range(5):
+                for j in range(3):
+                    exact = sum(F(float(A[n, i, k])) * Bx[k][j] for k in range(7))
+                    assert _inside(exact, P.lo[n, i, j], P.hi[n, i, j])
+
+
+def _circle_line(v):
+    """x^2 + y^2 = 4, x - y = 0: roots +-(sqrt 2, sqrt 2)."""
+    x, y = v
+    return [x * x + y * y - 4.0, x - y]
+
+
+def test_krawczyk_and_taylor_operators_on_a_known_system():
+    s2 = np.sqrt(2.0)
+    X = Interval(np.array([[1.3, 1.3], [1.6, 1.6], [-2.0, -2.0]]), np.array([[1.5, 1.5], [1.9, 1.9], [-1.0, -1.0]]))
+    K, ok = krawczyk(_circle_line, X)
+    assert ok.all()
+    assert np.all(K.subset_interior(X)[0])  # unique root proven in the first box
+    assert K.lo[0, 0] <= s2 <= K.hi[0, 0]
+    assert K.lo[1, 0] > X.hi[1, 0] or K.hi[1, 0] < X.lo[1, 0]  # no root in the second
+    system = QuadraticSystem(_circle_line, 2, np.array([0.3, -0.2]))
+    T, ok = system.taylor(X)
+    assert ok.all()
+    assert T.lo[0, 0] <= s2 <= T.hi[0, 0] and T.lo[0, 1] <= s2 <= T.hi[0, 1]
+    assert T.lo[2, 0] <= -s2 <= T.hi[2, 0]
+    assert (T.lo[1] > X.hi[1]).any() or (T.hi[1] < X.lo[1]).any()
+    # the expansion reproduces F and J exactly (quadratic system)
+    y = np.array([[0.7, -1.1]])
+    assert np.allclose(system.value(Interval(y, y)).mid, _circle_line(y[0]), atol=1e-14)
+    J = system.jacobian(Interval(y, y)).mid[0]
+    assert np.allclose(J, [[1.4, -2.2], [1.0, -1.0]], atol=1e-14)
+
+
+def _test1():
+    return load_robot(ROOT / "examples" / "seed000_test1.toml")
+
+
+def test_model_equations_vanish_at_a_published_equilibrium_and_are_quadratic():
+    """The m = 3 equation set (seed 000 eqs. 13, 14, 5, 17) at Table 1's refined row 4 (homotopy-independent: the
+    pose is polished by Newton on our own equations from the printed digits and must stay within rounding)."""
+    robot = _test1()
+    model = build_model(robot, robot.lengths, (0, 1, 2))
+    row = TABLES["1"]["rows"][0]
+    from cdpr_algebra.pose import matrix_from_angles
+
+    R = matrix_from_angles(*row["angles"])
+    p = np.array(row["position"])
+    B = p + robot.platform @ R.T
+    lam = np.array(row["tensions"]) / robot.lengths
+    x = np.concatenate([B.ravel(), lam])[None]
+    F0 = np.stack(model.residual_float(list(x.T)), 1)
+    assert np.max(np.abs(F0)) < 0.05  # printed digits
+    xs, conv, _ = ib.newton(model.residual_float, x)
+    assert conv[0] and np.max(np.abs(xs - x)[0, :9]) < 3e-3 and np.max(np.abs(xs - x)[0, 9:]) < 3e-4
+    rng = np.random.default_rng(5)
+    d = rng.standard_normal((3, model.h))
+    y = xs + 0.1 * rng.standard_normal((3, model.h))
+    sys_ = model.system
+    Fy = np.stack(model.residual_float(list(y.T)), 1)
+    Fyd = np.stack(model.residual_float(list((y + d).T)), 1)
+    Jy = sys_.jacobian(Interval(y, y)).mid
+    Q = sys_.quad.enclose(Interval(d, d)).mid
+    assert np.allclose(Fyd, Fy + np.einsum("nij,nj->ni", Jy, d) + Q, atol=1e-9)
+
+
+def test_one_and_two_cable_subproblems_of_test1_are_empty():
+    """Seed 000 Table 1: no equilibrium with 2 or 1 taut cables (printed '- 2 -', '- 1 -' lines)."""
+    robot = _test1()
+    assert TABLES["1"]["no_solution_for_m"] == [2, 1]
+    for cables in [(0,), (1,), (2,), (0, 1), (0, 2), (1, 2)]:
+        sub = solve_taut_set_interval(robot, robot.lengths, cables)
+        assert sub.admissible == 0 and sub.complete and sub.skipped is None, cables
+
+
+def _two_cable_robot(seed):
+    """A 2-cable robot built around an equilibrium: B1, B2, G in a vertical plane, both cable lines through a point
+    P above G (three coplanar forces in equilibrium are concurrent)."""
+    rng = np.random.default_rng(seed)
+    plat = rng.uniform(-1, 1, (2, 3))
+    com = rng.uniform(-0.5, 0.5, 3)
+    nrm = np.cross(plat[1] - plat[0], com - plat[0])
+    R0 = rotation_taking(nrm / np.linalg.norm(nrm), np.array([0.0, 1.0, 0.0]))
+    th = rng.uniform(0, 2 * np.pi)
+    R = np.array([[np.cos(th), 0, np.sin(th)], [0, 1, 0], [-np.sin(th), 0, np.cos(th)]]) @ R0
+    B = plat @ R.T
+    G = R @ com
+    P = G + np.array([0.0, 0.0, rng.uniform(1, 3)])
+    A = np.array([B[i] + rng.uniform(1.5, 4) * (P - B[i]) for i in range(2)])
+    rho = np.linalg.norm(A - B, axis=1)
+    lam = np.linalg.lstsq(((A - B) / rho[:, None]).T, np.array([0.0, 0.0, 1.0]), rcond=None)[0]
+    return Robot(A, plat, com, 1.0, [0.0, 0.0, -1.0], rho), R, lam
+
+
+@pytest.mark.parametrize("seed", [1, 3, 7])
+def test_two_cable_equilibrium_built_by_construction_is_found(seed):
+    robot, R, tau = _two_cable_robot(seed)
+    sub = solve_taut_set_interval(robot, robot.lengths, (0, 1))
+    assert sub.complete
+    hits = [s for s in sub.solutions if np.linalg.norm(s.position) < 1e-7 and np.max(np.abs(s.rotation - R)) < 1e-7]
+    if np.all(tau > 0):
+        assert len(hits) == 1 and np.allclose(hits[0].tensions, tau, atol=1e-8)
+    else:
+        assert not hits  # a negative tension: not admissible
+
+
+def test_one_cable_turning_angle_search_agrees_with_the_analytic_arcs():
+    """m = 1: the interval search of the turning angle against :mod:`.dgp_one_cable` (analytic arcs) on random
+    robots; both count the candidates G below / above the anchor that keep every other cable slack."""
+    from cdpr_algebra.dgp_one_cable import one_cable_equilibria
+
+    rng = np.random.default_rng(11)
+    checked = 0
+    for trial in range(40):
+        base = rng.uniform(-3, 3, (3, 3)) * [1, 1, 0.1] + [0, 0, 4]
+        plat = rng.uniform(-1, 1, (3, 3))
+        com = rng.uniform(-0.3, 0.3, 3)
+        rho = rng.uniform(2, 6, 3)
+        robot = Robot(base, plat, com, 1.0, [0, 0, -1.0], rho)
+        for i in range(3):
+            analytic = [e for e in one_cable_equilibria(robot, i, rho) if e.tension > 0]
+            sub = solve_taut_set_interval(robot, rho, (i,))
+            if sub.undecided:
+                continue  # a tangency (arc of zero length): the interval search says so
+            assert sub.admissible == len(analytic), (trial, i)
+            for s in sub.solutions:  # the reported pose keeps every other cable slack
+                B = s.position + plat @ s.rotation.T
+                dist = np.linalg.norm(B - base, axis=1)
+                assert all(dist[j] <= rho[j] for j in range(3) if j != i)
+                assert abs(dist[i] - rho[i]) < 1e-9
+            checked += 1
+    assert checked > 100
+
+
+@pytest.fixture(scope="module")
+def test1_m3():
+    robot = _test1()
+    return robot, solve_taut_set_interval(robot, robot.lengths, (0, 1, 2))
+
+
+@pytest.mark.slow
+def test_seed000_test1_three_cables_reproduces_table1(test1_m3):
+    """The 6 admissible equilibria of Table 1 (row 1 with the seeds-README erratum x = 2.751), each proven unique
+    in its box; the search is complete (no undecided box).  Tolerances as in tests/test_dgp.py: with the platform
+    data rounded to 3 decimals as printed the equilibria move by up to 2.3e-3 in position, 5.8e-3 in angle (row 2)
+    and 7e-4 in tension."""
+    robot, sub = test1_m3
+    assert sub.complete and sub.admissible == 6
+    rows = TABLES["1"]["rows"]
+    used = set()
+    for row in rows:
+        k = min(range(6), key=lambda k: np.max(np.abs(sub.solutions[k].position - row["position"])))
+        s = sub.solutions[k]
+        assert k not in used
+        used.add(k)
+        assert np.max(np.abs(s.position - row["position"])) < 2.5e-3
+        da = np.abs((s.angles - np.array(row["angles"]) + np.pi) % (2 * np.pi) - np.pi)
+        assert np.max(da) < 6e-3
+        assert np.max(np.abs(s.tensions - row["tensions"])) < 1e-3
+        assert s.enclosure_width < 1e-8
+        # residual of the equilibrium in the world frame (independent of the solver's equations)
+        B = s.position + robot.platform @ s.rotation.T
+        G = s.position + s.rotation @ robot.com
+        assert np.allclose(np.linalg.norm(B - robot.base, axis=1), robot.lengths, atol=1e-9)
+        u = (robot.base - B) / robot.lengths[:, None]
+        f = robot.load * robot.load_direction
+        assert np.allclose((s.tensions[:, None] * u).sum(0) + f, 0, atol=1e-9)
+        assert np.allclose(np.cross(B, s.tensions[:, None] * u).sum(0) + np.cross(G, f), 0, atol=1e-8)
+
+
+@pytest.mark.slow
+def test_crosscheck_agrees_on_every_subproblem_of_test1(test1_m3):
+    from cdpr_algebra.crosscheck import compare_taut_set, crosscheck_table, CrosscheckResult
+
+    robot, sub3 = test1_m3
+    comps = [compare_taut_set(robot, robot.lengths, c) for c in [(0,), (1,), (2,), (0, 1), (0, 2), (1, 2)]]
+    comps.append(compare_taut_set(robot, robot.lengths, (0, 1, 2), interval_result=sub3))
+    res = CrosscheckResult(robot.name, robot.lengths, tuple(comps), 0.0)
+    assert res.agree, crosscheck_table(res)
+    assert [c.homotopy for c in comps] == [0, 0, 0, 0, 0, 0, 6]
+    assert [c.interval for c in comps] == [0, 0, 0, 0, 0, 0, 6]
+    table = crosscheck_table(res)
+    assert "all agree" in table and "1 2 3" in table
+    json.dumps(res.to_dict())
+
+
+def test_crosscheck_reports_a_disagreement_with_its_solutions():
+    """A homotopy solution the interval side does not have (and vice versa) is listed, and agree is False."""
+    from cdpr_algebra.crosscheck import _match
+    from cdpr_algebra.dgp import DGPSolution
+    from cdpr_algebra.interval_bp import IntervalSolution
+
+    robot = _test1()
+    R = np.eye(3)
+    h = [DGPSolution((1, 2, 3), np.array([1.0, 2.0, 3.0]), R, np.ones(3), ">")]
+    i = [IntervalSolution((1, 2, 3), np.array([1.0, 2.0, 3.0 + 1e-3]), R, np.ones(3), 1e-12)]
+    h_only, i_only = _match(robot, (1, 2, 3), h, i)
+    assert len(h_only) == 1 and len(i_only) == 1
+    i2 = [IntervalSolution((1, 2, 3), np.array([1.0, 2.0, 3.0 + 1e-9]), R, np.ones(3), 1e-12)]
+    assert _match(robot, (1, 2, 3), h, i2) == ((), ())
+
+
+def test_cli_crosscheck_json_and_bad_input(capsys):
+    from cdpr_algebra.cli import main
+
+    code = main(["crosscheck", "examples/seed000_test1.toml", "--taut", "1", "3", "--json"])
+    out = json.loads(capsys.readouterr().out)
+    assert code == 0 and out["agree"] is True
+    assert [s["taut"] for s in out["subproblems"]] == [[1, 3]]
+    assert out["subproblems"][0]["homotopy"] == 0 and out["subproblems"][0]["interval"] == 0
+    assert main(["crosscheck", "examples/seed000_test1.toml", "--taut", "4"]) == 2
+    assert "field '--taut'" in capsys.readouterr().err
+    assert main(["crosscheck", "examples/seed000_test1.toml", "--lengths", "1", "2"]) == 2
+
+
+@pytest.mark.slow
+def test_seed000_test2_printed_rows_with_six_and_five_taut_cables():
+    """Table 2 (with the corrected b1', b2' of the seeds README): both printed equilibria with 6 taut cables and
+    the three with 5, each proven and complete subproblems (the homotopy DGP gives the same counts, 2 and 3 per
+    5-cable set: see benchmarks/bench_interval_bp.py).  The platform is 0.04 m wide and printed to 1e-3 m, so the
+    printed rows fix the orientation to about 1e-3 / 0.035 = 0.03 rad and the tensions to about 1.5e-2."""
+    robot = load_robot(ROOT / "examples" / "seed000_test2.toml")
+    rows = TABLES["2"]["rows"]
+    for taut in sorted({tuple(r["taut"]) for r in rows}):
+        sub = solve_taut_set_interval(robot, robot.lengths, [c - 1 for c in taut])
+        assert sub.complete
+        assert sub.admissible == (2 if len(taut) == 6 else 3)
+        for row in (r for r in rows if tuple(r["taut"]) == taut):
+            s = min(sub.solutions, key=lambda s: np.max(np.abs(s.position - row["position"])))
+            assert np.max(np.abs(s.position - row["position"])) < 2.5e-3
+            da = np.abs((s.angles - np.array(row["angles"]) + np.pi) % (2 * np.pi) - np.pi)
+            assert np.max(da) < 0.03
+            assert np.max(np.abs(s.tensions - row["tensions"])) < 1.5e-2
