@@ -69,8 +69,8 @@ from fractions import Fraction
 
 import numpy as np
 
-from .interval_boxes import (Dual, Interval, QuadraticSystem, _midrad, enclose_fraction, inv_sqr, mr_matmul, newton,
-                             sq, stack)
+from .interval_boxes import (Interval, QuadraticSystem, _midrad, enclose_fraction, inv_sqr, mr_matmul, newton, sq,
+                             stack)
 from .jsonable import jsonable
 from .pose import angles_from_matrix
 
@@ -393,13 +393,25 @@ class Model:
                 bn = Fraction(0)
             use_n |= bn != 0
             sec.append((k, coef, bn))
-        self.use_n = use_n
+        self.n_in_equations = use_n  # the equation set itself uses n = b12 x b13 (eq. 17)
+        # l = 4: every point beyond the first three reference points also by eq. 17 (with n), a redundant relation
+        # used by the filter only; it couples the fourth reference point to the first three as l = 3 would
+        sec3 = []
+        if self.l == 4:
+            b12, b13 = _fsub(P[refs[1]], r0), _fsub(P[refs[2]], r0)
+            nrm = _fcross(b12, b13)
+            for k in [refs[3]] + others:
+                x = _fsolve3([b12, b13, nrm], _fsub(P[k], r0))
+                sec3.append((k, [1 - x[0] - x[1], x[0], x[1]], x[2]))
+            use_n = True
+        self.use_n = use_n  # the box carries n as an auxiliary point
         # model points: refs, secondaries, then n
         self.plat_ids = refs + [k for k, _, _ in sec]
         self.pid = {k: p for p, k in enumerate(self.plat_ids)}  # platform-point id -> model point
         self.npts = len(self.plat_ids) + (1 if use_n else 0)
         self.n_pt = len(self.plat_ids) if use_n else None
         self.sec = [(self.pid[k], coef, bn) for k, coef, bn in sec]
+        self.sec3 = [(self.pid[k], coef, bn) for k, coef, bn in sec3]
         self.ncols = 3 * self.npts + m
         self.lam0 = 3 * self.npts
         pinned = []
@@ -477,7 +489,7 @@ class Model:
         need = set(self.taut_pts) | {self.G_pt}
         if any(p not in pts for p in need):
             nvec = None
-            if self.use_n:
+            if self.n_in_equations:
                 u = [pts[1][c] - pts[0][c] for c in range(3)]
                 w = [pts[2][c] - pts[0][c] for c in range(3)]
                 nvec = _cross_list(u, w)
@@ -491,7 +503,7 @@ class Model:
                         cr = _iget(coef, r) if interval else coef[r]
                         t = pts[r][c] * cr
                         acc = t if acc is None else acc + t
-                    if self.use_n:
+                    if self.n_in_equations:
                         acc = acc + nvec[c] * bn
                     xyz.append(acc)
                 pts[p] = xyz
@@ -561,9 +573,8 @@ class Model:
 
     # -- filter data --------------------------------------------------------------------------------------------------
     def _filters(self):
-        n, m = self.n, self.m
+        n = self.n
         P = self.platF
-        npl = len(self.plat_ids)
         rho = Interval.point(self.rho)
         taut = set(self.cables)
         # spheres: (point, center (3,), R2 interval)
@@ -615,13 +626,17 @@ class Model:
         self.ds_r = Interval(np.array(ds_lo), np.array(ds_hi))
         self.ds_gp = _groups(self.ds_p)
         self.ds_gq = _groups(self.ds_q)
-        # secondary points
-        if self.sec:
-            self.lin_pt = np.array([p for p, _, _ in self.sec_coef], dtype=int)
-            self.lin_c = Interval(np.array([c.lo for _, c, _ in self.sec_coef]),
-                                  np.array([c.hi for _, c, _ in self.sec_coef]))  # (S, l)
-            self.lin_bn = Interval(np.array([b.lo for _, _, b in self.sec_coef]),
-                                   np.array([b.hi for _, _, b in self.sec_coef]))
+        # secondary points: (points, coefficients over the first L reference points, coefficient of n or None)
+        self.relations = []
+        for rel, nref, with_n in ((self.sec, self.l, self.n_in_equations), (self.sec3, 3, True)):
+            if not rel:
+                continue
+            cs = [_Ivec(coef) for _, coef, _ in rel]
+            bns = [_I(bn) for _, _, bn in rel]
+            self.relations.append((np.array([p for p, _, _ in rel], dtype=int),
+                                   Interval(np.array([c.lo for c in cs]), np.array([c.hi for c in cs])), nref,
+                                   Interval(np.array([b.lo for b in bns]), np.array([b.hi for b in bns]))
+                                   if with_n else None))
         # statics rows
         self._statics_rows()
 
@@ -629,7 +644,6 @@ class Model:
         m = self.m
         A = self.A
         f = self.f
-        rows = []  # (kc (m,3) Interval, k0 (m,) Interval, hc (3,), h0 (), active (m,))
         Ai = [Interval(A.lo[i], A.hi[i]) for i in self.cables]
 
         def unit(c):
@@ -724,10 +738,10 @@ class Model:
                 refs[:, p, c] = x[:, k]
                 k += 1
         out = {self.plat_ids[p]: refs[:, p] for p in range(self.l)}
-        nvec = np.cross(refs[:, 1] - refs[:, 0], refs[:, 2] - refs[:, 0]) if self.use_n else None
+        nvec = np.cross(refs[:, 1] - refs[:, 0], refs[:, 2] - refs[:, 0]) if self.n_in_equations else None
         for p, coef, bn in self.sec_coef_f:
             s = np.einsum("r,nrc->nc", coef, refs)
-            if self.use_n:
+            if self.n_in_equations:
                 s = s + bn * nvec
             out[self.plat_ids[p]] = s
         return out
@@ -770,7 +784,7 @@ class Model:
                 for r in range(self.l):
                     t = refs[r] * _iget(coef, r)
                     acc = t if acc is None else acc + t
-                if self.use_n:
+                if self.n_in_equations:
                     acc = acc + box.point(self.n_pt) * bn
                 box.set_point(p, acc)
         reasons = []
@@ -879,26 +893,27 @@ def contract_distances(model: Model, box: _Box):
 
 def contract_secondary(model: Model, box: _Box):
     """Secondary points s = sum_r c_r ref_r (+ bn n), eqs. 17-19, forward then backward onto refs and n."""
-    if not model.sec:
-        return
-    l = model.l
+    for pts, c, l, bnc in model.relations:
+        _contract_relation(model, box, pts, c, l, bnc)
+
+
+def _contract_relation(model: Model, box: _Box, pts, c: Interval, l: int, bnc):
     R = _gather(box, np.arange(l))  # (N, l, 3)
-    c = model.lin_c  # (S, l)
     terms = []
     for r in range(l):
         cr = Interval(c.lo[:, r, None], c.hi[:, r, None])  # (S, 1)
         terms.append(Interval(R.lo[:, None, r, :], R.hi[:, None, r, :]) * cr)  # (N, S, 3)
-    if model.use_n:
+    if bnc is not None:
         nv = box.point(model.n_pt)
-        bn = Interval(model.lin_bn.lo[:, None], model.lin_bn.hi[:, None])
+        bn = Interval(bnc.lo[:, None], bnc.hi[:, None])
         terms.append(Interval(nv.lo[:, None, :], nv.hi[:, None, :]) * bn)
     total = terms[0]
     for t in terms[1:]:
         total = total + t
-    S = _gather(box, model.lin_pt)
+    S = _gather(box, pts)
     S = S.intersect(total)
-    box.lo[:, 3 * model.lin_pt[:, None] + np.arange(3)] = S.lo
-    box.hi[:, 3 * model.lin_pt[:, None] + np.arange(3)] = S.hi
+    box.lo[:, 3 * pts[:, None] + np.arange(3)] = S.lo
+    box.hi[:, 3 * pts[:, None] + np.arange(3)] = S.hi
     # backward: each term = S - (others)
     nterm = len(terms)
     for k in range(nterm):
@@ -912,7 +927,7 @@ def contract_secondary(model: Model, box: _Box):
             new = tk / cr  # (N, S, 3); (-inf, inf) where the coefficient contains 0
             box.tighten_point(k, Interval(new.lo.max(axis=1), new.hi.min(axis=1)))
         else:
-            new = tk / Interval(model.lin_bn.lo[:, None], model.lin_bn.hi[:, None])
+            new = tk / Interval(bnc.lo[:, None], bnc.hi[:, None])
             box.tighten_point(model.n_pt, Interval(new.lo.max(axis=1), new.hi.min(axis=1)))
 
 
@@ -1156,7 +1171,6 @@ def _branch_and_prune(model: Model, opts: BPOptions):
     core = model.core_cols
     scale = model.core_scale
     h = model.h
-    res = model.residual
     lo, hi = model.initial_box()
     stack_ = [(lo, hi)]
     proven = []  # (Xs_lo (h,), Xs_hi, E_lo, E_hi, id)

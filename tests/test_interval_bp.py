@@ -11,7 +11,7 @@ import pytest
 
 import cdpr_algebra.interval_boxes as ib
 from cdpr_algebra.interval_boxes import Interval, QuadraticSystem, inv_sqr, krawczyk, mr_matmul
-from cdpr_algebra.interval_bp import BPOptions, build_model, solve_taut_set_interval
+from cdpr_algebra.interval_bp import build_model, solve_taut_set_interval
 from cdpr_algebra.pose import rotation_taking
 from cdpr_algebra.robot import Robot, load_robot
 
