@@ -53,7 +53,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .dgp_equations import decode, encode, taut_family, taut_parameters
+from .dgp_equations import decode, taut_family
 from .dgp_one_cable import one_cable_equilibria
 from .jsonable import jsonable
 from .pose import angles_from_matrix, rotation_taking
