@@ -16,12 +16,12 @@ contains 0), so it shows up as a disagreement to look at, never silently.
 from __future__ import annotations
 
 import inspect
-import itertools
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
+from .dgp import lengths_and_taut_sets
 from .interval_bp import BPOptions, solve_taut_set_interval
 from .jsonable import jsonable
 
@@ -141,13 +141,9 @@ def crosscheck(robot, lengths=None, sets=None, max_m: int = 6, options: BPOption
     """Compare the solvers on every taut set of m = 1 .. min(n, 6, max_m) cables, or on the 0-based ``sets``.
     ``progress(comparison, done, total)`` is called after each subproblem."""
     t0 = time.perf_counter()
-    if lengths is None:
-        if robot.lengths is None:
-            raise ValueError("no cable lengths: give lengths= or a robot with lengths")
-        lengths = robot.lengths
-    rho = np.asarray(lengths, dtype=float)
+    rho, every_set = lengths_and_taut_sets(robot, lengths, max_m)
     if sets is None:
-        sets = [c for m in range(1, min(robot.n, 6, max_m) + 1) for c in itertools.combinations(range(robot.n), m)]
+        sets = every_set
     out = []
     for k, c in enumerate(sets):
         comp = compare_taut_set(robot, rho, c, options, seed)

@@ -450,21 +450,11 @@ def krawczyk(residual, X: Interval, y=None, JX: Interval | None = None, want_m: 
     if JX is None:
         _, JX = residual_interval(residual, X)
     Jm = JX.mid
-    ok = np.all(np.isfinite(Jm), axis=(1, 2))
-    C = np.zeros_like(Jm)
-    if ok.any():
-        with np.errstate(all="ignore"):
-            try:
-                C[ok] = np.linalg.inv(Jm[ok])
-            except np.linalg.LinAlgError:
-                for k in np.flatnonzero(ok):
-                    try:
-                        C[k] = np.linalg.inv(Jm[k])
-                    except np.linalg.LinAlgError:
-                        ok[k] = False
-            cond = np.abs(C).sum(axis=2).max(axis=1) * np.abs(Jm).sum(axis=2).max(axis=1)
-        ok &= np.isfinite(cond) & (cond < 1e14)
-        C[~ok] = 0.0
+    C, ok = _inverse(Jm)
+    with np.errstate(all="ignore"):
+        cond = np.abs(C).sum(axis=2).max(axis=1) * np.abs(Jm).sum(axis=2).max(axis=1)
+    ok &= np.isfinite(cond) & (cond < 1e14)
+    C[~ok] = 0.0
     Fy = stack([_as_interval(r, N) for r in residual([Interval(y[:, k], y[:, k]) for k in range(h)])], axis=1)
     CF = matvec_point(C, Fy)
     Jm_, Jr_ = _midrad(JX)

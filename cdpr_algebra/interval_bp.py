@@ -69,6 +69,7 @@ from fractions import Fraction
 
 import numpy as np
 
+from .dgp import lengths_and_taut_sets
 from .interval_boxes import (Interval, QuadraticSystem, _midrad, enclose_fraction, inv_sqr, mr_matmul, newton, sq,
                              stack)
 from .jsonable import jsonable
@@ -1514,13 +1515,9 @@ def interval_dgp(robot, lengths=None, max_m: int = 6, progress=None, options: BP
                  sets=None) -> IntervalDGPResult:
     """Interval B&P over every set of m = 1 .. min(n, 6, max_m) taut cables (or the 0-based ``sets``)."""
     t0 = time.perf_counter()
-    if lengths is None:
-        if robot.lengths is None:
-            raise ValueError("no cable lengths: give lengths= or a robot with lengths")
-        lengths = robot.lengths
-    rho = np.asarray(lengths, dtype=float)
+    rho, every_set = lengths_and_taut_sets(robot, lengths, max_m)
     if sets is None:
-        sets = [c for m in range(1, min(robot.n, 6, max_m) + 1) for c in itertools.combinations(range(robot.n), m)]
+        sets = every_set
     subs = []
     for k, c in enumerate(sets):
         sub = solve_taut_set_interval(robot, rho, c, options)
