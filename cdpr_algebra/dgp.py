@@ -361,7 +361,7 @@ def _solve_one_cable(robot, rho, i):
 DIVERGED_NORM = 1e3  # normalized coordinates: the robot has size 1, every admissible equilibrium has |x| < ~10
 
 
-def _track(fam, m, target, seed, gamma):
+def _track(m, target, seed, gamma):
     """Parameter homotopy from the stored generic set.  Returns (result, failed paths, diverging paths).  A path
     beyond |x| > DIVERGED_NORM (a thousand robot sizes, or tensions of a thousand loads) that fails in the endgame
     zone or ends on a singular point is counted as diverging (going to or near a solution at infinity, which
@@ -419,9 +419,9 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0):
                              f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})"), []
     fam = taut_family(m)
     target, c, L, Rw = _normalized(robot, rho, cables)
-    res, failed, diverging = _track(fam, m, target, seed, gamma=False)
+    res, failed, diverging = _track(m, target, seed, gamma=False)
     if failed:
-        res2, failed2, diverging2 = _track(fam, m, target, seed + 7919, gamma=True)
+        res2, failed2, diverging2 = _track(m, target, seed + 7919, gamma=True)
         if failed2 < failed:
             res, failed, diverging = res2, failed2, diverging2
     X = np.array([s.x for s in res.solutions]).reshape(-1, fam.n)
