@@ -60,7 +60,7 @@ def build_parser() -> argparse.ArgumentParser:
     dgp.add_argument("robot", help="robot file (.json or .toml)")
     dgp.add_argument("--lengths", nargs="+", type=_finite("--lengths"), metavar="L",
                      help="cable lengths rho_1 .. rho_n (default: the robot file's)")
-    dgp.add_argument("--jobs", type=int, default=None, help="worker processes (default: all cores)")
+    dgp.add_argument("--jobs", type=int, default=None, help="parallel threads (default: all cores)")
     dgp.add_argument("--json", action="store_true", help="print JSON instead of a table")
     from . import cli_plot
 

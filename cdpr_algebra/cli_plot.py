@@ -24,7 +24,7 @@ def add_parser(subparsers) -> None:
                    help="cable lengths rho_1 .. rho_n (default: the robot file's)")
     p.add_argument("--out", default=None, metavar="FILE",
                    help="output file, .png or .svg (default: <robot file stem>_equilibria.png)")
-    p.add_argument("--jobs", type=int, default=None, help="worker processes (default: all cores)")
+    p.add_argument("--jobs", type=int, default=None, help="parallel threads (default: all cores)")
 
 
 def output_path(out: str | None, robot_file: str) -> Path:

@@ -12,7 +12,9 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   to the scale of the stored sets: base centred at the centroid c of the exit points, world frame turned by
   Rw so that the load acts along -z, lengths divided by L = ``robot.size``, load Q d replaced by -z; then
   p = c + L Rw^T p^, R = Rw^T R^, lam = Q lam^ / L, tau_i = lam_i rho_i.
-  Tracking uses vectorized evaluators (:class:`FastTautSystem`; predictor tolerance 1e-4); a path failing in
+  Tracking uses the compiled tracker (:mod:`.homotopy.compiled` with the numba evaluators and structured linear
+  solve of :mod:`.dgp_kernels`; numpy evaluators :class:`FastTautSystem` for the endgame checks and retries;
+  predictor tolerance 1e-4); a path failing in
   the endgame zone (|t| <= 0.1) beyond 1000 robot sizes (|x| > ``DIVERGED_NORM`` in normalized coordinates,
   while every admissible equilibrium has |x| < ~10) is counted as diverging to a solution at infinity (special
   geometries, e.g. coplanar base and platform, have some), not as failed.  Any other suspect path (failed, or
@@ -43,11 +45,9 @@ test).  As a safety net, admissible solutions of different subproblems with the 
 from __future__ import annotations
 
 import itertools
-import multiprocessing
 import os
-import sys
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -81,7 +81,7 @@ def _generic(m: int):
     if m not in _GENERIC:
         from .homotopy.monodromy import load_instance
 
-        p, X, _ = load_instance(generic_path(m), taut_family(m))
+        p, X, _ = load_instance(generic_path(m), fast_family(m))  # hash of the sympy family, residual by numpy
         _GENERIC[m] = (p, X)
     return _GENERIC[m]
 
@@ -173,6 +173,12 @@ class FastTautSystem:
 
     def __getattr__(self, name):
         return getattr(self.family, name)
+
+    def compiled_kernels(self):
+        """Numba evaluators and structured linear solve for the compiled tracker (:mod:`.dgp_kernels`)."""
+        from .dgp_kernels import taut_fj, taut_fjt, taut_solve
+
+        return taut_fj, taut_fjt, taut_solve
 
     def _unpack(self, x, p):
         m = self.mm
@@ -417,7 +423,7 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0):
     if not generic_path(m).exists():
         return DGPSubproblem(taut1, 0, 0, 0, 0, 0, time.perf_counter() - t0,
                              f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})"), []
-    fam = taut_family(m)
+    fam = fast_family(m)
     target, c, L, Rw = _normalized(robot, rho, cables)
     res, failed, diverging = _track(m, target, seed, gamma=False)
     if failed:
@@ -431,7 +437,7 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0):
     for _ in range(2):  # real Newton polish
         if not len(Xr):
             break
-        F, J, _ = fam.evaluate_all(Xr.astype(complex), target)
+        F, J = fam.evaluate_and_jacobian(Xr.astype(complex), target)
         try:
             Xr = Xr - np.linalg.solve(J.real, F.real[..., None])[..., 0]
         except np.linalg.LinAlgError:
@@ -489,9 +495,9 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
         certify: bool = True) -> "DGPResult":
     """Every admissible equilibrium of ``robot`` with cable ``lengths`` (default: the robot's).
 
-    Subproblems: every taut set of m = 1 .. min(n, 6, max_m) cables.  ``jobs`` worker processes
-    (default ``os.cpu_count()``; 1 = in this process); ``progress(sub, done, total)`` is called in this
-    process after each finished subproblem; ``certify``: attach an interval certificate to every solution.
+    Subproblems: every taut set of m = 1 .. min(n, 6, max_m) cables, solved by ``jobs`` threads (default
+    ``os.cpu_count()``; 1 = one after the other; the compiled tracker releases the GIL, so they track in
+    parallel); ``progress(sub, done, total)`` is called in the calling thread after each finished subproblem; ``certify``: attach an interval certificate to every solution.
     """
     t0 = time.perf_counter()
     rho, sets = lengths_and_taut_sets(robot, lengths, max_m)
@@ -500,11 +506,13 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
     heavy = [c for c in sets if len(c) >= 2 and generic_path(len(c)).exists()]
     done = 0
     if jobs > 1 and len(heavy) > 1:
-        for m in sorted({len(c) for c in heavy}):  # build and load in the parent: forked workers inherit them
+        for m in sorted({len(c) for c in heavy}):  # build and load shared data once, before the threads start
             _generic(m)
-        ctx = multiprocessing.get_context("fork") if sys.platform != "win32" else None
+            fast_family(m)
         light = [c for c in sets if c not in heavy]
-        with ProcessPoolExecutor(max_workers=min(jobs, len(heavy)), mp_context=ctx) as ex:
+        # threads: the compiled tracker releases the GIL, so subproblems track in parallel without the cost of
+        # worker processes (start-up, pickling); the Python parts (endgame, filtering, certificates) interleave
+        with ThreadPoolExecutor(max_workers=min(jobs, len(heavy))) as ex:
             futs = {ex.submit(solve_taut_set, robot, rho, c, seed, certify): c
                     for c in sorted(heavy, key=lambda c: -len(c))}
             for c in light:

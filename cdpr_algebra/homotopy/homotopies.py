@@ -95,6 +95,18 @@ class ParameterHomotopy:
             dp = (self.gamma * self.p1 - self.p0) / s - num * (self.gamma - 1) / s**2
         return p, dp
 
+    def compiled_kernels(self):
+        """The system's compiled evaluators ``(fj, fjt)`` for :mod:`.compiled`, or None (numpy tracking)."""
+        from . import compiled
+
+        get = getattr(self.system, "compiled_kernels", None)
+        return get() if get is not None and compiled.available() else None
+
+    def path_parameters(self):
+        """(p1, p0, gamma) as arrays of one row for :func:`.compiled.track_kernel` (gamma 1: straight segment)."""
+        g = 1.0 if self.gamma is None else self.gamma
+        return np.array(self.p1[None, :], order="C"), np.array(self.p0[None, :], order="C"), np.array([g], dtype=complex)
+
     def evaluate(self, x, t):
         p, _ = self.parameters_at(t)
         return self.system.evaluate(x, p)

@@ -12,7 +12,8 @@ a path solves H(x(s), t(s)) = 0, hence dx/ds = -H_x^{-1} H_t (t_b - t_a). One st
 4. next step h * clip(0.9 (predictor_tol / |d1|)^(1/5), ...): the RK4 local error is O(h^5), so this
    keeps the predictor error near the tolerance; rejected steps shrink by at least 2.
 
-All active paths step together: every stage is one call of the compiled evaluator on
+Homotopies that offer compiled evaluators (``compiled_kernels()``) are tracked by the same step compiled
+with numba, one path at a time (:mod:`.compiled`).  Otherwise all active paths step together: every stage is one call of the compiled evaluator on
 (npaths, n) points and one ``np.linalg.solve`` on (npaths, n, n). Paths that reach s = 1 or fail
 leave the active set. Failures: ``step_too_small`` (h < ``min_step``), ``too_many_steps``,
 ``diverged`` (|x| > ``max_norm`` or a non-finite value).
@@ -105,6 +106,11 @@ def _solve(A, b):
 def track_segment(homotopy, x0, t_a, t_b, options: TrackerOptions | None = None, h0=None) -> SegmentResult:
     """Track every path from t_a to t_b (arrays of shape (N,) or scalars), vectorized across paths."""
     o = options or TrackerOptions()
+    kernels = getattr(homotopy, "compiled_kernels", None)
+    if kernels is not None and kernels() is not None:  # the same step, compiled (numba), one path at a time
+        from .compiled import track_segment_compiled
+
+        return track_segment_compiled(homotopy, x0, t_a, t_b, o, h0)
     x = np.array(x0, dtype=complex, copy=True)
     N, n = x.shape
     t_a = np.broadcast_to(np.asarray(t_a, dtype=complex), (N,)).copy()

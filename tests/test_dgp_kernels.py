@@ -1,0 +1,90 @@
+"""Compiled DGP evaluators (dgp_kernels) against the sympy family, and the compiled tracker against the numpy one."""
+
+import numpy as np
+import pytest
+
+from cdpr_algebra.dgp import _generic, fast_family
+from cdpr_algebra.dgp_equations import taut_family
+from cdpr_algebra.dgp_kernels import taut_fj, taut_fjt
+from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
+from cdpr_algebra.homotopy.tracker import TrackerOptions, track_segment
+
+
+@pytest.mark.parametrize("m", [2, 3, 4, 5, 6])
+def test_kernels_equal_sympy_family(m):
+    fam = taut_family(m)
+    rng = np.random.default_rng(m)
+    for _ in range(3):
+        x = rng.normal(size=fam.n) + 1j * rng.normal(size=fam.n)
+        p = rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m)
+        dp = rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m)
+        F0, J0, JP0 = fam.evaluate_all(x[None], p)
+        F = np.empty(fam.neq, complex)
+        J = np.zeros((fam.neq, fam.n), complex)
+        Ht = np.empty(fam.neq, complex)
+        taut_fjt(x, p, dp, F, J, Ht)
+        scale = 1 + np.abs(F0).max() + np.abs(J0).max()
+        assert np.abs(F - F0[0]).max() <= 1e-13 * scale
+        assert np.abs(J - J0[0]).max() <= 1e-13 * scale
+        assert np.abs(Ht - JP0[0] @ dp).max() <= 1e-13 * scale * (1 + np.abs(dp).max())
+        # fj writes the same F and J (the pattern of J is complete: a stale J is overwritten)
+        F2 = np.empty(fam.neq, complex)
+        J2 = J.copy()
+        taut_fj(x, p, F2, J2)
+        assert np.array_equal(F2, F) and np.array_equal(J2, J)
+
+
+class _NumpyOnly:
+    """The same homotopy without compiled kernels: tracked by the numpy tracker."""
+
+    def __init__(self, hom):
+        self.hom = hom
+
+    def __getattr__(self, name):
+        if name == "compiled_kernels":
+            raise AttributeError(name)
+        return getattr(self.hom, name)
+
+
+@pytest.mark.parametrize("m,gamma", [(2, None), (3, 0.6 + 0.8j)])
+def test_compiled_tracker_equals_numpy_tracker(m, gamma):
+    p1, X = _generic(m)
+    rng = np.random.default_rng(10 + m)
+    p0 = p1 + 0.3 * (rng.normal(size=p1.shape) + 1j * rng.normal(size=p1.shape))
+    hom = ParameterHomotopy(fast_family(m), p1, p0, gamma=gamma)
+    assert hom.compiled_kernels() is not None
+    o = TrackerOptions(predictor_tol=1e-4)
+    a = track_segment(hom, X, 1.0, 0.1, o)
+    b = track_segment(_NumpyOnly(hom), X, 1.0, 0.1, o)
+    ok = (a.status == "success") & (b.status == "success")
+    assert ok.mean() > 0.95
+    assert np.max(np.abs(a.x[ok] - b.x[ok])) <= 1e-8 * (1 + np.abs(b.x[ok]).max())
+    # the same step rule: the same number of steps on (almost) every path
+    assert np.mean(a.steps[ok] == b.steps[ok]) > 0.9
+    # endpoints solve the target system at t = 0.1
+    F = hom.evaluate(a.x[ok], np.full(ok.sum(), 0.1 + 0j))
+    assert np.abs(F).max() <= 1e-8
+
+
+@pytest.mark.parametrize("m", [2, 4, 6])
+def test_structured_solve_equals_dense(m):
+    from cdpr_algebra.dgp_kernels import taut_solve
+    from cdpr_algebra.homotopy.compiled import dense_solve
+
+    fam = taut_family(m)
+    rng = np.random.default_rng(20 + m)
+    x = rng.normal(size=fam.n) + 1j * rng.normal(size=fam.n)
+    p = rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m)
+    F = np.empty(fam.neq, complex)
+    J = np.zeros((fam.neq, fam.n), complex)
+    taut_fj(x, p, F, J)
+    b = rng.normal(size=fam.n) + 1j * rng.normal(size=fam.n)
+    A = np.empty_like(J)
+    d1, d2 = np.empty(fam.n, complex), np.empty(fam.n, complex)
+    assert taut_solve(J, A, b, d1) and dense_solve(J, A, b, d2)
+    assert np.abs(J @ d1 - b).max() <= 1e-12 * np.abs(b).max() * np.linalg.cond(J)
+    assert np.abs(d1 - np.linalg.solve(J, b)).max() <= 1e-10 * np.abs(d2).max()
+    assert np.abs(d2 - np.linalg.solve(J, b)).max() <= 1e-10 * np.abs(d2).max()
+    # a singular Jacobian (two equal rows) gives False and no silent garbage
+    J[7] = J[6]
+    assert not taut_solve(J, A, b, d1) or not np.all(np.isfinite(d1)) or np.abs(J @ d1 - b).max() > 1e-6
