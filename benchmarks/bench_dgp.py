@@ -1,7 +1,13 @@
 """Wall time of the complete DGP (every set of taut cables) on seed 000 Test 1 (target <= 1 s) and, when the
 generic sets for m = 4 .. 6 are stored, Test 3 (63 subproblems, target <= 10 s on 2 cores).
 
-    python benchmarks/bench_dgp.py [--repeat 3] [--jobs N] [--no-test3]
+    python benchmarks/bench_dgp.py [--repeat 3] [--jobs N] [--no-test3] [--phc] [--phc-test3] [--phc-timeout S]
+
+``--phc`` also solves the homotopy subproblems (m >= 2) of Test 1 with PHCpack's blackbox (``phc -b``, Debian
+package ``phcpack``) in the same run, on the same normalized equations (:func:`cdpr_algebra.dgp_equations.taut_family`
+at the robot's parameters), next to our time for that subproblem alone (median of ``--repeat``, one thread);
+``--phc-test3`` does the same for the first subproblem of each m = 2..6 of Test 3 (each PHCpack run stopped
+after ``--phc-timeout`` seconds, default 1800).
 
 The first run of each robot also builds and compiles the families (reported separately as "first run");
 the median is over the following runs.  Peak memory (ru_maxrss of this process: subproblems run in threads) is printed.
@@ -43,11 +49,45 @@ def bench(path, repeat, jobs):
           f"{failed} failed", flush=True)
 
 
+def phc_compare(path, cable_sets, repeat, timeout):
+    """Per subproblem: our wall time (solve_taut_set, one thread, median of ``repeat``) and PHCpack's blackbox."""
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from bench_homotopy import phc_run
+
+    from cdpr_algebra.dgp import _normalized, lengths_and_taut_sets, solve_taut_set
+    from cdpr_algebra.dgp_equations import taut_family
+
+    robot = load_robot(path)
+    rho, _ = lengths_and_taut_sets(robot)
+    for cables in cable_sets:
+        solve_taut_set(robot, rho, cables)  # warm-up (loads the generic set)
+        ts = []
+        for _ in range(repeat):
+            t0 = time.perf_counter()
+            sub, sols = solve_taut_set(robot, rho, cables)
+            ts.append(time.perf_counter() - t0)
+        target = _normalized(robot, rho, cables)[0]
+        res = phc_run(taut_family(len(cables)), target, timeout=timeout)
+        taut = [c + 1 for c in cables]
+        ours = (f"ours {statistics.median(ts):.3f} s ({sub.paths} paths, {sub.finite} finite, {sub.real} real, "
+                f"{sub.admissible} admissible, {sub.failed_paths} failed)")
+        if res is None:
+            print(f"{robot.name} taut {taut}: {ours}; phc: not installed (apt-get install -y phcpack)", flush=True)
+        elif res["timeout"]:
+            print(f"{robot.name} taut {taut}: {ours}; phc -b: stopped after {res['wall']:.0f} s", flush=True)
+        else:
+            print(f"{robot.name} taut {taut}: {ours}; phc -b {res['wall']:.1f} s (mixed volume {res['paths']}, "
+                  f"{res['regular']} regular, {res['real']} real)", flush=True)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--jobs", type=int, default=None)
     ap.add_argument("--no-test3", action="store_true", help="Test 1 only")
+    ap.add_argument("--phc", action="store_true", help="also PHCpack's blackbox on Test 1's homotopy subproblems")
+    ap.add_argument("--phc-test3", action="store_true", help="also PHCpack on one subproblem per m of Test 3")
+    ap.add_argument("--phc-timeout", type=float, default=1800.0)
     args = ap.parse_args(argv)
     print(f"stored generic sets: m = {available_m()}")
     bench(ROOT / "examples" / "seed000_test1.toml", args.repeat, args.jobs)
@@ -57,6 +97,12 @@ def main(argv=None):
         bench(ROOT / "examples" / "seed000_test3.toml", args.repeat, args.jobs)
     else:
         print("Test 3: skipped (generic sets for m = 4, 5, 6 not all stored)")
+    if args.phc:
+        phc_compare(ROOT / "examples" / "seed000_test1.toml", [(0, 1), (0, 2), (1, 2), (0, 1, 2)], args.repeat,
+                    args.phc_timeout)
+    if args.phc_test3:
+        phc_compare(ROOT / "examples" / "seed000_test3.toml", [tuple(range(m)) for m in range(2, 7)], args.repeat,
+                    args.phc_timeout)
     self_kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
     print(f"peak memory: {self_kb / 1024:.0f} MiB")
 

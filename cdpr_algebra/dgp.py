@@ -38,8 +38,10 @@ existence and uniqueness in a box of relative width <= 1e-9, tension signs, slac
 **Deduplication rule.** An equilibrium is reported once, in the subproblem with the fewest taut cables:
 a solution of subproblem S with a tension |tau_i| <= tol is not reported by S (it is the solution of
 S minus {i}, whose subproblem reports it: there cable i is exactly at its length, which passes the slack
-test).  As a safety net, admissible solutions of different subproblems with the same pose (within
-1e-7 L) are merged, keeping the one with fewer taut cables.
+test).  Admissible solutions of different subproblems with the same pose (within 1e-7 L) are merged into
+one, the one with fewer taut cables (the first subproblem among equals); the others are listed as its
+``alternatives`` (taut set, tensions, H_r): a pose held by several taut sets with positive tensions, as every
+valid cable configuration of a robot with more than 6 cables at the cable lengths of that pose.
 """
 
 from __future__ import annotations
@@ -48,7 +50,7 @@ import itertools
 import os
 import time
 from concurrent.futures import ThreadPoolExecutor, as_completed
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -97,12 +99,11 @@ class DGPSolution:
     hessian: str
     certified: bool | None = None
     certificate: object = None  # certify.Certificate (interval proof, issue 5) or None when not certified
+    alternatives: tuple = ()  # the same pose found with other taut sets (redundantly constrained): DGPSolutions
 
     def with_certificate(self, cert) -> "DGPSolution":
         """This solution with an interval certificate attached (the proven stability class replaces the floating
         point one when the certificate proves it)."""
-        from dataclasses import replace
-
         cls = cert.hessian_class if cert.hessian == "proven" and cert.hessian_class else self.hessian
         return replace(self, certified=bool(cert.certified), certificate=cert, hessian=cls)
 
@@ -118,7 +119,9 @@ class DGPSolution:
         return {"taut": list(self.taut), "position": jsonable(self.position), "angles": jsonable(self.angles),
                 "rotation": jsonable(self.rotation), "tensions": jsonable(self.tensions), "hessian": self.hessian,
                 "stable": self.stable, "certified": self.certified,
-                "certificate": None if self.certificate is None else self.certificate.to_dict()}
+                "certificate": None if self.certificate is None else self.certificate.to_dict(),
+                "alternatives": [{"taut": list(a.taut), "tensions": jsonable(a.tensions), "hessian": a.hessian,
+                                  "certified": a.certified} for a in self.alternatives]}
 
 
 @dataclass(frozen=True)
@@ -469,10 +472,16 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0):
 
 
 def _merge(solutions, L):
+    """One solution per pose (within 1e-7 L): the one with the fewest taut cables (first in subproblem order among
+    equals); the others are kept as its ``alternatives`` (a pose held by several taut sets, e.g. every valid cable
+    configuration of a robot with more than 6 cables at lengths of that pose)."""
     out = []
     for s in sorted(solutions, key=lambda s: len(s.taut)):
-        if any(np.max(np.abs(s.position - t.position)) <= 1e-7 * L and np.max(np.abs(s.rotation - t.rotation)) <= 1e-7
-               and len(s.taut) > 1 for t in out):
+        same = [k for k, t in enumerate(out) if len(s.taut) > 1 and np.max(np.abs(s.position - t.position)) <= 1e-7 * L
+                and np.max(np.abs(s.rotation - t.rotation)) <= 1e-7]
+        if same:
+            k = same[0]
+            out[k] = replace(out[k], alternatives=out[k].alternatives + (s,))
             continue
         out.append(s)
     return out
@@ -558,6 +567,9 @@ def dgp_table(result: DGPResult, n: int) -> str:
     for k, s in enumerate(result.solutions):
         if s.certificate is not None and not s.certified:
             lines.append(f"  #{k + 1} not certified: {s.certificate.reason}")
+        for a in s.alternatives:
+            lines.append(f"  #{k + 1} is also an equilibrium with taut cables {list(a.taut)}: tensions "
+                         + " ".join(f"{v:.3f}" for v in a.tensions) + f", H_r {a.hessian}, certified {_certified_label(a)}")
     ms = sorted({len(s.taut) for s in result.subproblems})
     counts = ", ".join(f"{len(result.by_m(m))} with {m} taut" for m in reversed(ms))
     skipped = sum(1 for s in result.subproblems if s.skipped)
