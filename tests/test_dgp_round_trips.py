@@ -1,0 +1,120 @@
+"""Issue 4, item 7: round trips through the complete DGP.
+
+* IGP -> cable lengths -> DGP: on random 3-cable robots, every admissible IGP solution (assigned orientation or
+  assigned position, seed 004) is an equilibrium of the DGP at its cable lengths, with 3 taut cables and the
+  IGP's tensions.
+* Random robots built around a known equilibrium with m = 4, 5, 6 taut cables (m = 2, 3: tests/test_dgp.py):
+  directions, anchors and G chosen so that the wrench balance is a square linear system in the tensions (and the
+  free part of G), solved, kept when every tension is positive; the DGP at those lengths returns that pose.
+"""
+
+import numpy as np
+import pytest
+
+from cdpr_algebra.dgp import dgp
+from cdpr_algebra.igp_orientation import igp_orientation
+from cdpr_algebra.igp_position import igp_position
+from cdpr_algebra.pose import matrix_from_angles
+from cdpr_algebra.robot import Robot
+
+
+def _hits(res, p, R, L):
+    return [s for s in res.solutions if np.max(np.abs(s.position - p)) <= 1e-7 * L
+            and np.max(np.abs(s.rotation - R)) <= 1e-7]
+
+
+def _random_3_cable_robot(rng):
+    base = rng.uniform(-5, 5, (3, 3)) + np.array([0, 0, 6])
+    plat = rng.uniform(-1, 1, (3, 3))
+    com = rng.uniform(-0.3, 0.3, 3)
+    return Robot(base=base, platform=plat, com=com, load=rng.uniform(1, 20), load_direction=[0, 0, -1])
+
+
+def _dgp_returns(robot, s):
+    res = dgp(robot, lengths=np.real(s.lengths), jobs=1, max_m=3)
+    assert all(sub.failed_paths == 0 for sub in res.subproblems)
+    hits = _hits(res, np.real(s.position), np.real(s.rotation), robot.size)
+    assert len(hits) == 1, [(h.taut, h.position) for h in res.solutions]
+    assert hits[0].taut == (1, 2, 3)
+    assert np.allclose(hits[0].tensions, np.real(s.tensions), rtol=1e-7, atol=1e-9 * robot.load)
+    return hits[0]
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_igp_orientation_to_dgp(seed):
+    rng = np.random.default_rng(seed)
+    done = 0
+    while done < 2:
+        robot = _random_3_cable_robot(rng)
+        res = igp_orientation(robot, matrix_from_angles(*rng.uniform(-0.6, 0.6, 3)), certify=False)
+        adm = [s for s in res.solutions if s.admissible and np.all(np.real(s.tensions) > 1e-3 * robot.load)]
+        if not adm:
+            continue
+        _dgp_returns(robot, adm[0])
+        done += 1
+
+
+def test_igp_position_to_dgp():
+    rng = np.random.default_rng(5)
+    done = 0
+    while done < 2:
+        robot = _random_3_cable_robot(rng)
+        G = robot.base.mean(axis=0) + np.array([*rng.uniform(-1, 1, 2), -rng.uniform(3, 5)])
+        res = igp_position(robot, G, include_complex=False)
+        adm = [s for s in res.solutions if s.admissible and np.all(np.real(s.tensions) > 1e-3 * robot.load)]
+        if not adm:
+            continue
+        for s in adm:
+            _dgp_returns(robot, s)
+        done += 1
+
+
+def equilibrium_robot(m, seed):
+    """A robot with m cables holding a known equilibrium, all taut (see module doc).  Returns (robot, p, R, tau)."""
+    rng = np.random.default_rng(seed)
+    d = np.array([0.0, 0.0, -1.0])
+    e1, e2 = np.eye(3)[0], np.eye(3)[1]  # G = G0 + a e1 + b e2: only G's part across d enters the moment
+    while True:
+        Q = float(rng.uniform(5, 20))
+        U = np.array([[*rng.uniform(-0.7, 0.7, 2), 1.0] for _ in range(m)])
+        U /= np.linalg.norm(U, axis=1)[:, None]  # unit directions from B_i up to A_i
+        B = rng.uniform(-0.5, 0.5, size=(m, 3))
+        G0 = np.array([*rng.uniform(-0.2, 0.2, 2), -0.3])
+        # force: sum tau_i U_i + Q d = 0; moment about the origin: sum tau_i B_i x U_i + G x Q d = 0
+        W = np.vstack([U.T, np.cross(B, U).T])  # 6 x m
+        rhs = -np.concatenate([Q * d, np.cross(G0, Q * d)])
+        cols = [np.concatenate([np.zeros(3), np.cross(e, Q * d)]) for e in (e1, e2)][: 6 - m]  # free part of G
+        M = np.column_stack([W] + cols)
+        if abs(np.linalg.det(M)) < 1e-6:
+            continue
+        z = np.linalg.solve(M, rhs)
+        tau = z[:m]
+        G = G0 + sum(c * e for c, e in zip(z[m:], (e1, e2)))
+        if np.all(tau > 0.05 * Q):
+            break
+    rho = rng.uniform(3.0, 6.0, size=m)
+    A = B + rho[:, None] * U
+    R = matrix_from_angles(*rng.uniform(-np.pi, np.pi, 3) * np.array([1, 0.4, 1]))
+    p = G + rng.uniform(-0.2, 0.2, 3)
+    b = (B - p) @ R  # R^T (B_i - p)
+    g = R.T @ (G - p)
+    robot = Robot(A, b, g, Q, d, rho, name=f"equilibrium{m}")
+    return robot, p, R, tau
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("m, seed", [(4, 21), (5, 22), (6, 23)])
+def test_round_trip_known_equilibrium_with_m_taut_cables(m, seed):
+    robot, p, R, tau = equilibrium_robot(m, seed)
+    # the construction is an equilibrium: wrench balance at (p, R) with these tensions
+    B = p + robot.platform @ R.T
+    U = (robot.base - B) / robot.lengths[:, None]
+    assert np.abs(tau @ U + robot.load * robot.load_direction).max() <= 1e-9 * robot.load
+    res = dgp(robot)
+    assert len(res.subproblems) == 2 ** m - 1
+    assert all(sub.failed_paths == 0 for sub in res.subproblems)
+    hits = _hits(res, p, R, robot.size)
+    assert len(hits) == 1, [(s.taut, s.position) for s in res.solutions]
+    assert hits[0].taut == tuple(range(1, m + 1))
+    assert np.allclose(hits[0].tensions, tau, rtol=1e-7, atol=1e-9 * robot.load)
+    assert hits[0].certified
