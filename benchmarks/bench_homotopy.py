@@ -95,7 +95,20 @@ def phc_run(S, p, timeout=600):
     m = re.search(r"mixed volume\s*:\s*(\d+)", text)
     paths = int(m.group(1)) if m else None
     return {"wall": wall, "paths": paths, "regular": len(re.findall(r"regular ==", text)),
-            "real": len(re.findall(r"real regular ==", text)), "timeout": False}
+            "real": len(re.findall(r"real regular ==", text)), "timeout": False,
+            "solutions": phc_regular_solutions(text, S.n)}
+
+
+def phc_regular_solutions(text, n):
+    """The regular solutions of a ``phc -b`` output file, as rows (x1 .. xn) of a complex array."""
+    rows = []
+    for block in re.split(r"\nsolution \d+ :", text):
+        if not re.search(r"= (real|complex) regular ==", block):
+            continue
+        vals = {k: complex(float(a), float(b)) for k, a, b in re.findall(r"\n (x\d+) :\s+(\S+)\s+(\S+)", block)}
+        if len(vals) == n:
+            rows.append([vals[f"x{i + 1}"] for i in range(n)])
+    return np.array(rows, dtype=complex).reshape(-1, n)
 
 
 def _peer_equations(S, p, power="^"):
