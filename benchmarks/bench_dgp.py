@@ -1,7 +1,7 @@
 """Wall time of the complete DGP (every set of taut cables) on seed 000 Test 1 (target <= 1 s) and, when the
 generic sets for m = 4 .. 6 are stored, Test 3 (63 subproblems, target <= 10 s on 2 cores).
 
-    python benchmarks/bench_dgp.py [--repeat 3] [--jobs N] [--no-test3] [--phc] [--phc-test3] [--phc-timeout S]
+    python benchmarks/bench_dgp.py [--repeat 3] [--jobs N] [--no-test3] [--test2] [--phc] [--phc-test3] [--phc-timeout S]
 
 ``--phc`` also solves the homotopy subproblems (m >= 2) of Test 1 with PHCpack's blackbox (``phc -b``, Debian
 package ``phcpack``) in the same run, on the same normalized equations (:func:`cdpr_algebra.dgp_equations.taut_family`
@@ -92,12 +92,15 @@ def main(argv=None):
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--jobs", type=int, default=None)
     ap.add_argument("--no-test3", action="store_true", help="Test 1 only")
+    ap.add_argument("--test2", action="store_true", help="also Test 2 (63 subproblems; published 187 s single core)")
     ap.add_argument("--phc", action="store_true", help="also PHCpack's blackbox on Test 1's homotopy subproblems")
     ap.add_argument("--phc-test3", action="store_true", help="also PHCpack on one subproblem per m of Test 3")
     ap.add_argument("--phc-timeout", type=float, default=1800.0)
     args = ap.parse_args(argv)
     print(f"stored generic sets: m = {available_m()}")
     bench(ROOT / "examples" / "seed000_test1.toml", args.repeat, args.jobs)
+    if args.test2:
+        bench(ROOT / "examples" / "seed000_test2.toml", args.repeat, args.jobs)
     if args.no_test3:
         print("Test 3: not run (--no-test3)")
     elif {4, 5, 6} <= set(available_m()):
