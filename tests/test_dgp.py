@@ -186,12 +186,14 @@ def test_cli_json_contract(tmp_path, capsys):
     for sub in out["subproblems"]:
         assert set(sub) == {"taut", "paths", "finite", "real", "admissible", "failed_paths", "seconds", "skipped",
                             "diverging"}
-    keys = {"taut", "position", "angles", "rotation", "tensions", "hessian", "stable", "certified", "certificate"}
+    keys = {"taut", "position", "angles", "rotation", "tensions", "hessian", "stable", "certified", "certificate",
+            "alternatives"}
     assert out["solutions"]
     for sol in out["solutions"]:
         assert set(sol) == keys
         assert len(sol["tensions"]) == 2 and np.array(sol["rotation"]).shape == (3, 3)
         assert sol["hessian"] in (">", ">=", "<", "<=", "<>") and isinstance(sol["certified"], bool)
+        assert sol["alternatives"] == []  # two cables: no pose is held by two taut sets
         cert = sol["certificate"]
         assert {"box_width", "tension_lower", "tension_upper", "hessian"} <= set(cert)
         assert cert["hessian"] in ("proven", "undecided") and len(cert["tension_lower"]) == 2
