@@ -4,12 +4,13 @@
 
 Test 1 (all 7 subproblems, m <= 3): the median of ``--repeat`` runs against the target <= 25 s (the published
 single-core time of the C++ code, seed 000 Sec. 5.1).  ``--test2`` / ``--test3``: one run of all 63 subproblems
-(m <= 6) of Tests 2 / 3 against the published 187 s / 702 s (single core), with the admissible counts per m against
-the paper's and against our homotopy DGP (``cdpr dgp``): Test 2 published 2, 11, 12, 9 with 6, 5, 4, 3 taut cables,
+(m <= 6) of Tests 2 / 3 against the published 187 s / 702 s (single core), with the seconds and boxes per m, the
+slowest subproblems, and the admissible counts per m against the paper's and against our homotopy DGP
+(``cdpr dgp``): Test 2 published 2, 11, 12, 9 with 6, 5, 4, 3 taut cables,
 homotopy 2, 11, 14, 7 (the same 34 in all, same counts subproblem by subproblem as the interval solver); Test 3
 published 17 *stable* (3, 1, 7, 4, 2 with 6..2 taut), homotopy 16 admissible (3, 0, 7, 4, 2: the paper's 5-cable
-row is its 6-cable row 3 with tau_4 = 0.004, over-length with 5 taut cables).  These take minutes; ``--max-m``
-limits the subproblems.  Progress goes to stderr.
+row is its 6-cable row 3 with tau_4 = 0.004, over-length with 5 taut cables).  ``--max-m`` limits the subproblems.
+Progress goes to stderr.  The first run on a machine also compiles the numba kernels (about 20 s; cached after).
 """
 
 from __future__ import annotations
@@ -59,7 +60,11 @@ def run(path, repeat: int, max_m: int, verbose: bool):
         if homotopy:
             line += f", homotopy DGP {homotopy}"
     print(line, flush=True)
-    slow = sorted(res.subproblems, key=lambda s: -s.seconds)[:5]
+    print("  by m (last run): " + "; ".join(
+        f"m={m}: {sum(s.seconds for s in res.subproblems if len(s.taut) == m):.1f} s, "
+        f"{sum(s.boxes for s in res.subproblems if len(s.taut) == m)} boxes"
+        for m in sorted({len(s.taut) for s in res.subproblems})), flush=True)
+    slow = sorted(res.subproblems, key=lambda s: -s.seconds)[:8]
     print("  slowest: " + ", ".join(f"{list(s.taut)} {s.seconds:.1f} s ({s.boxes} boxes)" for s in slow), flush=True)
     return med
 

@@ -410,3 +410,226 @@ def test_crosscheck_agrees_on_every_subproblem_of_test2():
             if np.min(s.tensions[taut]) < 6e-3:
                 near.append(float(np.min(tau_lo)))
     assert len(near) == 2 and all(t > 2e-3 for t in near) and by_m[4] == 12 + len(near)
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not {2, 3, 4, 5, 6} <= set(available_m()), reason="generic sets of the homotopy DGP not stored")
+def test_crosscheck_agrees_on_every_subproblem_of_test3():
+    """Seed 000 Test 3 (Sec. 5.3, MARIONET-VR): the interval B&P and the homotopy agree on all 63 subproblems.
+    Published: 3, 1, 7, 4, 2 equilibria with 6, 5, 4, 3, 2 taut cables.  The printed 5-cable row (cables 1, 2, 3,
+    5, 6) is an equilibrium of its equation set with cable 4 over its length (seeds README, tables note): the
+    interval solver proves that solution and rejects it as inadmissible, so 0 with 5 taut cables; the other counts
+    as published.  The printed 6-cable rows 1-3 are among the proven solutions, row 3 with a small tension tau_4
+    whose enclosure is positive."""
+    robot, subs, by_m = _crosscheck_all_agree("seed000_test3")
+    assert by_m == {1: 0, 2: 2, 3: 4, 4: 7, 5: 0, 6: 3}
+    five = next(s for s in subs if s.taut == (1, 2, 3, 5, 6))
+    assert five.admissible == 0 and five.proven_inadmissible >= 1
+    six = next(s for s in subs if len(s.taut) == 6)
+    rows = TABLES["3"]["rows"]
+    for row in rows[:3]:
+        s = min(six.solutions, key=lambda s: np.max(np.abs(s.position - row["position"])))
+        assert np.max(np.abs(s.position - row["position"])) <= 1.5e-3
+        da = np.abs((s.angles - np.array(row["angles"]) + np.pi) % (2 * np.pi) - np.pi)
+        assert np.max(da) <= 3e-3 and np.max(np.abs(s.tensions - row["tensions"])) <= 3e-3
+    s3 = min(six.solutions, key=lambda s: np.max(np.abs(s.position - rows[2]["position"])))
+    assert 0 < s3.enclosure_lo[-6 + 3] * robot.lengths[3] and s3.tensions[3] < 0.01
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# compiled (numba) kernels against the vectorized reference and against known equilibria
+def test_compiled_scalar_operations_match_the_vectorized_ones():
+    """The s_* operations of the compiled kernels give the very bounds of the vectorized :class:`Interval`
+    operations ("fast" widening), which test_operations_enclose_exact_results checks against exact arithmetic."""
+    import numba as nb
+
+    @nb.njit(error_model="numpy")
+    def apply(op, al, ah, bl, bh, ol, oh):
+        for k in range(al.shape[0]):
+            if op == 0:
+                ol[k], oh[k] = ib.s_add(al[k], ah[k], bl[k], bh[k])
+            elif op == 1:
+                ol[k], oh[k] = ib.s_sub(al[k], ah[k], bl[k], bh[k])
+            elif op == 2:
+                ol[k], oh[k] = ib.s_mul(al[k], ah[k], bl[k], bh[k])
+            elif op == 3:
+                ol[k], oh[k] = ib.s_div(al[k], ah[k], bl[k], bh[k])
+            elif op == 4:
+                ol[k], oh[k] = ib.s_sqr(al[k], ah[k])
+            else:
+                ol[k], oh[k] = ib.s_inv_sqr(bl[k], bh[k], al[k], ah[k])
+
+    rng = np.random.default_rng(21)
+    n = 4000
+    a, b = _random_intervals(rng, n), _random_intervals(rng, n)
+    a.lo[:20], a.hi[20:40] = -np.inf, np.inf  # unbounded operands (as the tensions' upper bounds)
+    b.lo[40:60], b.hi[40:60] = 0.0, np.abs(b.hi[40:60])  # divisors touching 0
+    sq_ = Interval(np.abs(b.lo), np.abs(b.lo) + np.abs(b.hi))
+    with np.errstate(all="ignore"):
+        expected = [a + b, a - b, a * b, a / b, a.sqr(), inv_sqr(sq_, a)]
+    for op, ref in enumerate(expected):
+        ol, oh = np.empty(n), np.empty(n)
+        bl, bh = (sq_.lo, sq_.hi) if op == 5 else (b.lo, b.hi)
+        with np.errstate(all="ignore"):
+            apply(op, a.lo, a.hi, bl, bh, ol, oh)
+        assert np.array_equal(ol, ref.lo, equal_nan=True) and np.array_equal(oh, ref.hi, equal_nan=True), op
+
+
+def test_compiled_exact_difference_encloses_and_is_a_point_when_exact():
+    import numba as nb
+
+    @nb.njit(error_model="numpy")
+    def apply(x, y, lo, hi):
+        for k in range(x.shape[0]):
+            lo[k], hi[k] = ib.s_sub_exact(x[k], y[k])
+
+    rng = np.random.default_rng(22)
+    x = _random_floats(rng, 3000)
+    y = np.where(rng.random(3000) < 0.3, x, _random_floats(rng, 3000))  # also exact zeros
+    y[:100] = x[:100] * (1 + 2.0 ** -30)  # Sterbenz: exact differences
+    lo, hi = np.empty(3000), np.empty(3000)
+    with np.errstate(all="ignore"):
+        apply(x, y, lo, hi)
+    for k in range(3000):
+        if not (np.isfinite(x[k] - y[k])):
+            continue
+        d = F(float(x[k])) - F(float(y[k]))
+        assert _inside(d, lo[k], hi[k])
+        assert (lo[k] == hi[k]) == (F(float(x[k] - y[k])) == d)
+
+
+def _known_solution(model, robot, position, angles, tensions):
+    """Core vector of the model for a pose, polished by Newton on the model's own equations (float, converged to
+    ~1e-15: the exact equilibrium is within ~1e-13 of it), and the full box vector (secondary points, n, lam)."""
+    from cdpr_algebra.pose import matrix_from_angles
+
+    R = matrix_from_angles(*angles)
+    pts = {k: np.asarray(position) + R @ b for k, b in enumerate(robot.platform)}
+    pts[robot.n] = np.asarray(position) + R @ robot.com
+    origin, T = model.to_world
+    core = []
+    for p in range(model.l):
+        local = T.T @ (pts[model.plat_ids[p]] - origin)
+        core += [local[c] for c in range(3) if 3 * p + c not in model.pinned]
+    core += [tensions[c] / robot.lengths[c] for c in model.cables]
+    xs, conv, _ = ib.newton(model.residual_float, np.array([core]))
+    assert conv[0]
+    full = np.zeros(model.ncols)
+    P = model.points_float(xs)
+    for p, k in enumerate(model.plat_ids):
+        full[3 * p:3 * p + 3] = P[k][0]
+    if model.use_n:
+        r = [full[3 * p:3 * p + 3] for p in range(3)]
+        full[3 * model.n_pt:3 * model.n_pt + 3] = np.cross(r[1] - r[0], r[2] - r[0])
+    full[model.lam0:] = xs[0, model.h - model.m:]
+    return xs[0], full
+
+
+def _boxes_around(model, full, rng, count):
+    """Random boxes of the initial domain shrunk around the point ``full`` (widths from the whole domain to 1e-6)."""
+    lo0, hi0 = model.initial_box()
+    hi0 = np.where(np.isfinite(hi0), hi0, full + 10 * model.lam_scale)
+    f = 10.0 ** rng.uniform(-6, 0, (count, 1)) * rng.uniform(0.2, 1, (count, model.ncols))
+    g = 10.0 ** rng.uniform(-6, 0, (count, 1)) * rng.uniform(0.2, 1, (count, model.ncols))
+    lo = full - f * (full - lo0) - 1e-12 * model.L
+    hi = full + g * (hi0 - full) + 1e-12 * model.L
+    lo[:, model.pinned] = hi[:, model.pinned] = 0.0
+    return lo, hi
+
+
+@pytest.mark.parametrize("case", ["test1_m3", "test3_m6", "test2_m5", "planar"])
+def test_compiled_filter_and_taylor_operators_keep_a_known_equilibrium(case):
+    """Boxes around an equilibrium (Tables 1-3 rows polished on the model's equations; for m = 2 a robot built
+    around one): the compiled filter never empties them and the contracted boxes and the compiled second-order
+    operator's X cap T(X) still hold it (both kernel orders; the vectorized filter as a reference)."""
+    import cdpr_algebra.interval_bp as bp
+
+    if case == "planar":
+        robot, R, lam = _two_cable_robot(3)  # both tensions positive
+        from cdpr_algebra.pose import angles_from_matrix
+
+        model = build_model(robot, robot.lengths, (0, 1))
+        x, full = _known_solution(model, robot, np.zeros(3), angles_from_matrix(R), lam * robot.lengths)
+    else:
+        name, row = {"test1_m3": ("1", 3), "test3_m6": ("3", 0), "test2_m5": ("2", 3)}[case]
+        robot = load_robot(ROOT / "examples" / f"seed000_test{name}.toml")
+        r = TABLES[name]["rows"][row]
+        model = build_model(robot, robot.lengths, [c - 1 for c in r["taut"]])
+        x, full = _known_solution(model, robot, r["position"], r["angles"], r["tensions"])
+    rng = np.random.default_rng(7)
+    lo, hi = _boxes_around(model, full, rng, 300)
+    tol = 1e-9 * model.L
+    opts = bp.BPOptions()
+    for kernels, order in (("compiled", 1), ("compiled", 0), ("numpy", 1)):
+        old = bp.KERNELS, bp.ORDER
+        bp.KERNELS, bp.ORDER = kernels, order
+        try:
+            cl, ch = bp.contract(model, lo.copy(), hi.copy(), opts)
+        finally:
+            bp.KERNELS, bp.ORDER = old
+        assert len(cl) == len(lo), (kernels, order)
+        assert np.all(cl <= full + tol) and np.all(ch >= full - tol), (kernels, order)
+    core = model.core_cols
+    fin = np.all(np.isfinite(ch[:, core]), axis=1)
+    assert fin.sum() > 100
+    Tl, Th, excluded, _ = model.system.taylor_contract(cl[fin][:, core], ch[fin][:, core], model.core_scale, 2, 0.1)
+    assert not excluded.any()
+    assert np.all(Tl <= x + tol) and np.all(Th >= x - tol)
+    # and the compiled operator agrees with the vectorized one (to the rounding of different preconditioners)
+    X = Interval(cl[fin][:, core], ch[fin][:, core])
+    T, ok = model.system.taylor(X)
+    Tc, _, _, _ = model.system.taylor_contract(X.lo, X.hi, model.core_scale, 1, 0.1)
+    Xc = X.intersect(T)
+    assert ok.all() and np.allclose(Tc, Xc.lo, rtol=0, atol=1e-9 * model.L)
+
+
+def test_compiled_filter_is_at_least_as_tight_as_the_vectorized_one():
+    """On a batch of boxes of a branch and prune of seed 000 Test 3 (5 taut cables), the compiled filter in the
+    vectorized order (each projection applied at once instead of simultaneously) keeps no box that the vectorized
+    filter empties, and its boxes lie in the vectorized filter's ones up to rounding."""
+    import cdpr_algebra.interval_bp as bp
+
+    robot = load_robot(ROOT / "examples" / "seed000_test3.toml")
+    model = build_model(robot, robot.lengths, (0, 1, 2, 3, 4))
+    lo, hi = model.initial_box()
+    opts = bp.BPOptions(max_sweeps=2)
+    rng = np.random.default_rng(3)
+    cols = model.bisect_cols
+    for _ in range(9):  # random bisections of the widest pose variables: a batch of 512 boxes
+        k = cols[np.argmax((hi - lo)[:, cols], axis=1)]
+        r = np.arange(len(lo))
+        mid = lo[r, k] + rng.uniform(0.3, 0.7, len(lo)) * (hi[r, k] - lo[r, k])
+        l2, h2 = lo.copy(), hi.copy()
+        h2[r, k] = mid
+        lo[r, k] = mid
+        lo, hi = np.vstack([lo, l2]), np.vstack([hi, h2])
+    vl, vh = lo.copy(), hi.copy()
+    alive_v = bp.contract_vectorized(model, vl, vh, opts)
+    lc, hc = lo.copy(), hi.copy()
+    rel, n_pt, use_n, sph, dst, chir, rows, gauss = model.compiled_data()
+    alive = bp._contract_kernel(lc, hc, model.core_cols.astype(np.int64), model.core_scale, 2, 0.1, rel, n_pt, use_n,
+                                sph, dst, chir, rows, gauss, True, 0)
+    assert 20 < alive_v.sum() < len(lo) and not np.any(alive & ~alive_v)
+    both = alive & alive_v
+    tol = 1e-9 * np.maximum(1.0, np.abs(vl[both]))
+    assert np.all(lc[both] >= vl[both] - tol) and np.all(hc[both] <= vh[both] + tol)
+
+
+def test_compiled_and_vectorized_solvers_find_the_same_equilibria():
+    """A 5-cable subproblem of seed 000 Test 2 (3 equilibria, two printed in Table 2) solved with the compiled and
+    with the vectorized operators: the same proven equilibria, both searches complete."""
+    import cdpr_algebra.interval_bp as bp
+
+    robot = load_robot(ROOT / "examples" / "seed000_test2.toml")
+    subs = {}
+    for kernels in ("numpy", "compiled"):
+        old = bp.KERNELS
+        bp.KERNELS = kernels
+        try:
+            subs[kernels] = solve_taut_set_interval(robot, robot.lengths, (0, 1, 3, 4, 5))
+        finally:
+            bp.KERNELS = old
+    a, b = subs["numpy"], subs["compiled"]
+    assert a.complete and b.complete and a.admissible == b.admissible == 3
+    for s, t in zip(a.solutions, b.solutions):
+        assert np.max(np.abs(s.position - t.position)) < 1e-10 and np.max(np.abs(s.tensions - t.tensions)) < 1e-10

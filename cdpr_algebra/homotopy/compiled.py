@@ -17,6 +17,10 @@ system's structure); a system offers them by a method ``compiled_kernels()`` (th
 :mod:`cdpr_algebra.dgp_kernels`).  Compiling sympy-generated
 straight-line code with numba instead was measured at 15-30 s for the 3-cable DGP system (821 lines; 110 s
 for 6 cables), which is why the kernels are written by hand.
+
+numba caches compiled code on disk per source file and does not notice edits of another module that a cached
+function calls: after editing this module, delete ``__pycache__/*.nbi`` / ``*.nbc`` next to ``dgp_kernels.py`` too
+(a fresh install is safe: every file is new).
 """
 
 from __future__ import annotations
