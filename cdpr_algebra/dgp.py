@@ -179,9 +179,9 @@ class FastTautSystem:
 
     def compiled_kernels(self):
         """Numba evaluators and structured linear solve for the compiled tracker (:mod:`.dgp_kernels`)."""
-        from .dgp_kernels import taut_fj, taut_fjt, taut_solve
+        from .dgp_kernels import taut_apply, taut_factor, taut_fj, taut_fjt
 
-        return taut_fj, taut_fjt, taut_solve
+        return taut_fj, taut_fjt, taut_factor, taut_apply
 
     def _unpack(self, x, p):
         m = self.mm

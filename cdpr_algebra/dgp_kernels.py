@@ -9,9 +9,9 @@ m = 2 .. 6 (m = len(x) - 12), with x = (p, u, v, w, lam) and p = (A_i, rho_i^2, 
 dF/dx by hand (d(a x c)/da = -[c]x, d(a x c)/dc = [a]x); Ht from dB_i = R db'_i, dG = R dg':
     2 s_i . (dB_i - dA_i) - d rho_i^2,   sum lam_i (dA_i - dB_i) + d(Qd),
     dG x Qd + G x d(Qd) + sum lam_i (dB_i x A_i + B_i x dA_i).
-Only the nonzero pattern of J is written (the caller zeroes J once).  ``taut_solve`` solves J d = b with w
-eliminated first (see its docstring).  Checked against the sympy family and a dense solve in
-tests/test_dgp_kernels.py.  One compiled function serves every m (cached by numba on first use).
+Only the nonzero pattern of J is written (the caller zeroes J once).  ``taut_factor`` / ``taut_apply`` solve
+J d = b with w eliminated first and the lam columns pivoted first (see their docstrings).  Checked against the
+sympy family and a dense solve in tests/test_dgp_kernels.py.  One compiled function serves every m (cached by numba on first use).
 """
 
 from __future__ import annotations
@@ -20,9 +20,9 @@ import numba as nb
 import numpy as np
 from numba import types as nbt
 
-from .homotopy.compiled import SOLVE_SIG, lu_solve_leading
+from .homotopy.compiled import APPLY_SIG, FACTOR_SIG, SOLVE_SIG, lu_apply_sparse_lead, lu_factor_sparse_lead
 
-__all__ = ["taut_fj", "taut_fjt", "taut_solve"]
+__all__ = ["taut_fj", "taut_fjt", "taut_factor", "taut_apply", "taut_solve"]
 
 _C1 = nbt.complex128[::1]
 _C2 = nbt.complex128[:, ::1]
@@ -163,30 +163,74 @@ def taut_fjt(x, p, dp, F, J, Ht):
     _eval(x, p, dp, F, J, Ht, True)
 
 
-@nb.njit(SOLVE_SIG, cache=True, error_model="numpy")
-def taut_solve(J, A, b, out):
-    """out = J^{-1} b for a Jacobian of the taut family, w eliminated first.  Rows 3-5 (w - u x v) read
-    dw = b[3:6] - J[3:6, 3:9] d(u, v) (their w block is the identity), so the other rows give the reduced system
-    (unknowns p, u, v, lam; n - 3 of them)  sum_j (J[i, j] - J[i, w] J[3:6, j]) d_j = b_i - J[i, w] b[3:6],
-    solved by :func:`.homotopy.compiled.lu_solve_leading` in the workspace A: 40-50 % of the dense cost."""
-    n = b.shape[0]
+@nb.njit(cache=True)
+def _reduced_row(r, m):
+    """The row of J that is row r of the reduced system: statics rows, then u.u, v.v, u.v, then the spheres."""
+    if r < 6:
+        return 6 + m + r
+    if r < 9:
+        return r - 6
+    return r - 3
+
+
+@nb.njit(FACTOR_SIG, cache=True, error_model="numpy")
+def taut_factor(J, A, piv):
+    """LU factors (in A, piv) of the reduced system of a Jacobian of the taut family: w eliminated, lam pivoted
+    first.
+
+    Rows 3-5 (w - u x v) read dw = b[3:6] - J[3:6, 3:9] d(u, v) (their w block is the identity), so the other
+    rows give the reduced system (unknowns p, u, v, lam; n - 3 of them)
+    sum_j (J[i, j] - J[i, w] J[3:6, j]) d_j = b_i - J[i, w] b[3:6].  It is assembled with the m lam columns
+    first and the 6 statics rows on top: lam enters no other row, so the first m eliminations touch those 6
+    rows only (:func:`.homotopy.compiled.lu_factor_sparse_lead`), and the rest is a dense 9 x 9 elimination
+    (partial pivoting throughout; a singular lam block makes J singular, so nothing is lost).  False when the
+    reduced system (hence J) is singular."""
+    n = J.shape[1]
+    m = n - 12
     k = n - 3
     for r in range(k):
-        i = r if r < 3 else r + 3  # rows 0-2, then 6 .. n-1
+        i = _reduced_row(r, m)
         jw0, jw1, jw2 = J[i, 9], J[i, 10], J[i, 11]
-        for c in range(k):
-            j = c if c < 9 else c + 3  # columns p, u, v, then lam
+        for c in range(m):
+            A[r, c] = J[i, 12 + c]
+        for j in range(9):
             v = J[i, j]
-            if 3 <= j < 9:
+            if j >= 3:
                 v -= jw0 * J[3, j] + jw1 * J[4, j] + jw2 * J[5, j]
-            A[r, c] = v
-        out[r] = b[i] - (jw0 * b[3] + jw1 * b[4] + jw2 * b[5])
-    ok = lu_solve_leading(A, out, k)
-    for c in range(k - 1, 8, -1):  # lam back to its place (from the end: the shift is upwards)
-        out[c + 3] = out[c]
+            A[r, m + j] = v
+    return lu_factor_sparse_lead(A, piv, k, m, 6)
+
+
+@nb.njit(APPLY_SIG, cache=True, error_model="numpy")
+def taut_apply(J, A, piv, b, out):
+    """out = J^{-1} b from the factors of :func:`taut_factor` of this J (row n - 3 of A serves as scratch)."""
+    n = b.shape[0]
+    m = n - 12
+    k = n - 3
+    for r in range(k):
+        i = _reduced_row(r, m)
+        out[r] = b[i] - (J[i, 9] * b[3] + J[i, 10] * b[4] + J[i, 11] * b[5])
+    lu_apply_sparse_lead(A, piv, out, k, m, 6)
+    y = A[k]
+    for c in range(k):
+        y[c] = out[c]
+    for j in range(9):
+        out[j] = y[m + j]
+    for c in range(m):
+        out[12 + c] = y[c]
     for q in range(3):
         acc = b[3 + q]
         for j in range(3, 9):
             acc -= J[3 + q, j] * out[j]
         out[9 + q] = acc
-    return ok
+
+
+@nb.njit(SOLVE_SIG, cache=True, error_model="numpy")
+def taut_solve(J, A, b, out):
+    """out = J^{-1} b (:func:`taut_factor` then :func:`taut_apply`); False (and NaNs in out) when J is singular."""
+    piv = np.empty(b.shape[0], np.int64)
+    if not taut_factor(J, A, piv):
+        out[:] = np.nan
+        return False
+    taut_apply(J, A, piv, b, out)
+    return True

@@ -182,8 +182,10 @@ def test_failed_paths_are_retried():
     tr = TrackerOptions(max_steps=6)
     opts = SolveOptions(tracker=tr, retry_mpmath=False)
     idx = np.arange(len(st.solutions))
-    x, status, steps, retried = _track_to_endgame(H, st.solutions, idx, opts, 0.1, dc_replace(tr, max_steps=6))
+    x, status, steps, retried, h = _track_to_endgame(H, st.solutions, idx, opts, 0.1, dc_replace(tr, max_steps=6))
     assert (retried == "tight").any()
+    # the last step length is handed on to phase 2 only for paths tracked in one go
+    assert np.all(np.isnan(h[retried == "tight"])) and np.all(h[retried == ""] > 0)
     # the retry used the tightened options (4x the step budget) and succeeded where it could
     assert all(s == "success" or r == "tight" for s, r in zip(status, retried))
     r = solve(S, seed=0, options=SolveOptions(tracker=TrackerOptions(max_steps=40), retry_mpmath=False))

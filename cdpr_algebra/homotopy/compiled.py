@@ -8,13 +8,17 @@ overhead (not arithmetic) dominated its time.  Here every path runs its own loop
 (classical RK4 predictor on dx/ds = -H_x^{-1} H_t dt, two Newton corrections, the same acceptance tests,
 step-size rule and failure codes) for the parameter homotopy p(t) = (gamma t p1 + (1 - t) p0) / (gamma t + 1 - t)
 (gamma = 1: the straight segment), with per-path (p1, p0, gamma) allowed so that paths of several homotopies
-of one family can run in one call.  Linear systems by Gaussian elimination with partial pivoting (a zero pivot
-gives non-finite updates, as in numpy).  The system enters as three compiled functions with fixed signatures,
-passed as first-class functions (so the tracker is compiled and cached once for every system):
-``fj(x, p, F, J)`` (F and dF/dx), ``fjt(x, p, dp, F, J, Ht)`` (also Ht = dF/dp . dp) and
-``solve(J, A, b, out) -> bool`` (out = J^{-1} b with workspace A: :func:`dense_solve`, or one that uses the
-system's structure); a system offers them by a method ``compiled_kernels()`` (the DGP:
-:mod:`cdpr_algebra.dgp_kernels`).  Compiling sympy-generated
+of one family can run in one call.  Linear algebra: LU factors with partial pivoting, and two reuses of them
+(4 factorizations per step instead of 6): the second Newton correction is a chord step with the factors of
+the first (its update is the same to first order, so the contraction test keeps its meaning), and after an
+accepted step those factors (H_x at the predicted point, within the predictor error of the new point) give the
+next step's RK4 stage k1; after a rejected step k1 is kept (it does not depend on the step size).
+The system enters as four compiled functions with fixed signatures, passed as first-class functions (so the
+tracker is compiled and cached once for every system): ``fj(x, p, F, J)`` (F and dF/dx),
+``fjt(x, p, dp, F, J, Ht)`` (also Ht = dF/dp . dp), ``factor(J, A, piv) -> bool`` (LU factors of J in the
+workspace A; False when singular) and ``apply(J, A, piv, b, out)`` (out = J^{-1} b from them):
+:func:`dense_factor` / :func:`dense_apply`, or ones that use the system's structure.  A system offers them by a
+method ``compiled_kernels()`` (the DGP: :mod:`cdpr_algebra.dgp_kernels`).  Compiling sympy-generated
 straight-line code with numba instead was measured at 15-30 s for the 3-cable DGP system (821 lines; 110 s
 for 6 cables), which is why the kernels are written by hand.
 
@@ -32,7 +36,8 @@ import numpy as np
 import numba as nb
 from numba import types as nbt
 
-__all__ = ["available", "track_kernel", "track_segment_compiled", "lu_solve_leading", "dense_solve", "SOLVE_SIG"]
+__all__ = ["available", "track_kernel", "track_segment_compiled", "lu_factor_sparse_lead", "lu_apply_sparse_lead",
+           "dense_factor", "dense_apply", "dense_solve", "FACTOR_SIG", "APPLY_SIG", "SOLVE_SIG"]
 
 # status codes of the kernel (mapped to the strings of .results by the caller)
 RUNNING, OK, STEP_TOO_SMALL, TOO_MANY_STEPS, DIVERGED = 0, 1, 2, 3, 4
@@ -51,53 +56,93 @@ _C2 = nbt.complex128[:, ::1]
 _FJ = nbt.FunctionType(nbt.void(_C1, _C1, _C1, _C2))
 _FJT = nbt.FunctionType(nbt.void(_C1, _C1, _C1, _C1, _C2, _C1))
 
+_I1 = nbt.int64[::1]
+FACTOR_SIG = nbt.boolean(_C2, _C2, _I1)
+APPLY_SIG = nbt.void(_C2, _C2, _I1, _C1, _C1)
 SOLVE_SIG = nbt.boolean(_C2, _C2, _C1, _C1)
-_SOLVE = nbt.FunctionType(SOLVE_SIG)
+_FACTOR = nbt.FunctionType(FACTOR_SIG)
+_APPLY = nbt.FunctionType(APPLY_SIG)
 
 
 @nb.njit(cache=True, error_model="numpy")
-def lu_solve_leading(A, x, k):
-    """Solve A[:k, :k] y = x[:k] in place (A destroyed, y in x[:k]) by Gaussian elimination with partial
-    pivoting; False (and NaNs in x[:k]) for a zero or non-finite pivot."""
+def lu_factor_sparse_lead(A, piv, k, m, r):
+    """LU factors of A[:k, :k] in place by Gaussian elimination with partial pivoting (pivot rows in piv[:k],
+    multipliers below the diagonal; rows are swapped from the pivot column on, so :func:`lu_apply_sparse_lead`
+    replays the elimination on a right-hand side).  For a matrix whose first m columns vanish below row r
+    (m <= r), the pivot search and elimination of those columns visit rows < r only (the rows below hold exact
+    zeros there, so the factors are those of the full elimination).  False for a zero or non-finite pivot."""
     for c in range(k):
-        piv = c
+        last = r if c < m else k
+        p = c
         best = abs(A[c, c].real) + abs(A[c, c].imag)
-        for i in range(c + 1, k):
+        for i in range(c + 1, last):
             v = abs(A[i, c].real) + abs(A[i, c].imag)
             if v > best:
-                best, piv = v, i
+                best, p = v, i
         if best == 0.0 or not np.isfinite(best):
-            for i in range(k):
-                x[i] = np.nan
             return False
-        if piv != c:
+        piv[c] = p
+        if p != c:
             for j in range(c, k):
-                A[c, j], A[piv, j] = A[piv, j], A[c, j]
-            x[c], x[piv] = x[piv], x[c]
+                A[c, j], A[p, j] = A[p, j], A[c, j]
         inv = 1.0 / A[c, c]
-        for i in range(c + 1, k):
+        for i in range(c + 1, last):
             f = A[i, c] * inv
+            A[i, c] = f
             if f != 0:
                 for j in range(c + 1, k):
                     A[i, j] -= f * A[c, j]
-                x[i] -= f * x[c]
+    return True
+
+
+@nb.njit(cache=True, error_model="numpy")
+def lu_apply_sparse_lead(A, piv, x, k, m, r):
+    """x[:k] <- A[:k, :k]^{-1} x[:k] from the factors of :func:`lu_factor_sparse_lead` (same k, m, r)."""
+    for c in range(k):
+        last = r if c < m else k
+        p = piv[c]
+        if p != c:
+            x[c], x[p] = x[p], x[c]
+        xc = x[c]
+        if xc != 0:
+            for i in range(c + 1, last):
+                x[i] -= A[i, c] * xc
     for c in range(k - 1, -1, -1):
         acc = x[c]
         for j in range(c + 1, k):
             acc -= A[c, j] * x[j]
         x[c] = acc / A[c, c]
-    return True
+
+
+@nb.njit(FACTOR_SIG, cache=True, error_model="numpy")
+def dense_factor(J, A, piv):
+    """LU factors of the square J in the workspace A (J untouched); False when J is (numerically) singular."""
+    n = J.shape[0]
+    for i in range(n):
+        for j in range(n):
+            A[i, j] = J[i, j]
+    return lu_factor_sparse_lead(A, piv, n, 0, n)
+
+
+@nb.njit(APPLY_SIG, cache=True, error_model="numpy")
+def dense_apply(J, A, piv, b, out):
+    """out = J^{-1} b from the factors of :func:`dense_factor`."""
+    n = b.shape[0]
+    for i in range(n):
+        out[i] = b[i]
+    lu_apply_sparse_lead(A, piv, out, n, 0, n)
 
 
 @nb.njit(SOLVE_SIG, cache=True, error_model="numpy")
 def dense_solve(J, A, b, out):
-    """out = J^{-1} b (dense, partial pivoting) using the workspace A; J and b untouched."""
-    n = b.shape[0]
-    for i in range(n):
-        for j in range(n):
-            A[i, j] = J[i, j]
-        out[i] = b[i]
-    return lu_solve_leading(A, out, n)
+    """out = J^{-1} b (dense, partial pivoting) using the workspace A; J and b untouched; False (and NaNs in
+    out) when J is singular."""
+    piv = np.empty(b.shape[0], np.int64)
+    if not dense_factor(J, A, piv):
+        out[:] = np.nan
+        return False
+    dense_apply(J, A, piv, b, out)
+    return True
 
 
 @nb.njit(cache=True, error_model="numpy")
@@ -119,18 +164,31 @@ def _params(p1, p0, g, t, p, dp):
         dp[k] = (g * p1[k] - p0[k]) / s - num * (g - 1.0) / (s * s)
 
 @nb.njit(cache=True, error_model="numpy")
-def _stage(fjt, solve, x, t, dt, p1, p0, g, p, dp, F, J, Ht, A, rhs, k):
-    """k = dx/ds = -H_x^{-1} H_t dt at (x, t)."""
+def _lin(ok, apply, J, A, piv, b, out):
+    """out = J^{-1} b from factors of J (NaNs when the factorization failed)."""
+    if ok:
+        apply(J, A, piv, b, out)
+    else:
+        for i in range(out.shape[0]):
+            out[i] = np.nan
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _stage(fjt, factor, apply, x, t, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k):
+    """k = dx/ds = -H_x^{-1} H_t dt at (x, t), factoring H_x in (J, A, piv); True when it is regular."""
     _params(p1, p0, g, t, p, dp)
     fjt(x, p, dp, F, J, Ht)
     for i in range(rhs.shape[0]):
         rhs[i] = -Ht[i] * dt
-    solve(J, A, rhs, k)
+    ok = factor(J, A, piv)
+    _lin(ok, apply, J, A, piv, rhs, k)
+    return ok
 
-@nb.njit(nbt.void(_FJ, _FJT, _SOLVE, _C2, _C2, _C2, _C1, _C1, _C1, nbt.float64[::1], nbt.float64[::1],
+
+@nb.njit(nbt.void(_FJ, _FJT, _FACTOR, _APPLY, _C2, _C2, _C2, _C1, _C1, _C1, nbt.float64[::1], nbt.float64[::1],
                   _C2, nbt.float64[::1], nbt.int64[::1], nbt.int64[::1], nbt.float64[::1]),
          cache=True, error_model="numpy", nogil=True)
-def track_kernel(fj, fjt, solve, X, P1, P0, G, TA, TB, H0, opts, Xout, Sout, status, steps, Hout):
+def track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, Sout, status, steps, Hout):
     """Track every row of X from t = TA[i] to TB[i] (see module doc).  ``opts`` = (initial_step, max_step,
     min_step, max_steps, predictor_tol, corrector_tol, max_contraction, max_norm, noise_tol); rows of P1, P0,
     G are per path when they have as many rows as X, else row 0 serves every path."""
@@ -142,9 +200,19 @@ def track_kernel(fj, fjt, solve, X, P1, P0, G, TA, TB, H0, opts, Xout, Sout, sta
     p = np.empty(mp, np.complex128)
     dp = np.empty(mp, np.complex128)
     F = np.empty(neq, np.complex128)
-    J = np.zeros((neq, n), np.complex128)
     Ht = np.empty(neq, np.complex128)
-    A = np.empty((n, n), np.complex128)
+    # Jacobian, LU workspace and pivots: of the RK stages (J), of the current point (Jc, for k1), of the
+    # first Newton iteration (Jn), and a Jacobian scratch (Js) for evaluations that only need F or Ht
+    J = np.zeros((neq, n), np.complex128)
+    Jc = np.zeros((neq, n), np.complex128)
+    Jn = np.zeros((neq, n), np.complex128)
+    Js = np.zeros((neq, n), np.complex128)
+    A = np.zeros((n, n), np.complex128)
+    Ac = np.zeros((n, n), np.complex128)
+    An = np.zeros((n, n), np.complex128)
+    piv = np.zeros(n, np.int64)
+    pivc = np.zeros(n, np.int64)
+    pivn = np.zeros(n, np.int64)
     rhs = np.empty(n, np.complex128)
     k1 = np.empty(n, np.complex128)
     k2 = np.empty(n, np.complex128)
@@ -167,35 +235,48 @@ def track_kernel(fj, fjt, solve, X, P1, P0, G, TA, TB, H0, opts, Xout, Sout, sta
         h = H0[i]
         nsteps = 0
         st = RUNNING
+        have_lu = False  # (Jc, Ac, pivc) factor H_x near x (at the predicted point of the last accepted step)
+        have_k1 = False  # k1 is that of the current x (after a rejected step)
         if dt == 0:
             st = OK
         while st == RUNNING:
             ha = min(h, 1.0 - s)
-            _stage(fjt, solve, x, ta + s * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, rhs, k1)
+            if not have_k1:
+                if have_lu:
+                    _params(p1, p0, g, ta + s * dt, p, dp)
+                    fjt(x, p, dp, F, Js, Ht)
+                    for c in range(n):
+                        rhs[c] = -Ht[c] * dt
+                    apply(Jc, Ac, pivc, rhs, k1)
+                else:
+                    have_lu = _stage(fjt, factor, apply, x, ta + s * dt, dt, p1, p0, g, p, dp, F, Jc, Ht, Ac, pivc,
+                                     rhs, k1)
+                have_k1 = True
             for c in range(n):
                 xt[c] = x[c] + 0.5 * ha * k1[c]
-            _stage(fjt, solve, xt, ta + (s + 0.5 * ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, rhs, k2)
+            _stage(fjt, factor, apply, xt, ta + (s + 0.5 * ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k2)
             for c in range(n):
                 xt[c] = x[c] + 0.5 * ha * k2[c]
-            _stage(fjt, solve, xt, ta + (s + 0.5 * ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, rhs, k3)
+            _stage(fjt, factor, apply, xt, ta + (s + 0.5 * ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k3)
             for c in range(n):
                 xt[c] = x[c] + ha * k3[c]
-            _stage(fjt, solve, xt, ta + (s + ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, rhs, k4)
+            _stage(fjt, factor, apply, xt, ta + (s + ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k4)
             for c in range(n):
                 xt[c] = x[c] + (ha / 6.0) * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
             sn = s + ha
             _params(p1, p0, g, ta + sn * dt, p, dp)
-            # two Newton corrections at t(s + h)
-            fj(xt, p, F, J)
+            # two Newton corrections at t(s + h): a Newton step, then a chord step with the same factors
+            fj(xt, p, F, Jn)
             for c in range(n):
                 rhs[c] = -F[c]
-            solve(J, A, rhs, d1)
+            okn = factor(Jn, An, pivn)
+            _lin(okn, apply, Jn, An, pivn, rhs, d1)
             for c in range(n):
                 xt[c] += d1[c]
-            fj(xt, p, F, J)
+            fj(xt, p, F, Js)
             for c in range(n):
                 rhs[c] = -F[c]
-            solve(J, A, rhs, d2)
+            _lin(okn, apply, Jn, An, pivn, rhs, d2)
             for c in range(n):
                 x2[c] = xt[c] + d2[c]
             scale = 1.0 + _norm(x2)
@@ -206,15 +287,21 @@ def track_kernel(fj, fjt, solve, X, P1, P0, G, TA, TB, H0, opts, Xout, Sout, sta
             ok = finite and e1 <= ptol and contracting and e2 <= ctol
             if finite and not ok and e1 <= ptol and e2 <= noise_tol:
                 # round-off floor: a third update that does not move away either
-                fj(x2, p, F, J)
+                fj(x2, p, F, Js)
                 for c in range(n):
                     rhs[c] = -F[c]
-                solve(J, A, rhs, d3)
+                _lin(okn, apply, Jn, An, pivn, rhs, d3)
                 e3 = _norm(d3) / scale
                 if np.isfinite(e3) and e3 <= 2.0 * e2 and e3 <= noise_tol:
                     ok = True
                     for c in range(n):
                         x2[c] += d3[c]
+            if ok:  # the Newton factors become those of the new point (for its k1)
+                Jc, Jn = Jn, Jc
+                Ac, An = An, Ac
+                pivc, pivn = pivn, pivc
+                have_lu = okn
+                have_k1 = False
             nsteps += 1
             if ok:
                 for c in range(n):
@@ -254,7 +341,7 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
     from .tracker import RUNNING as S_RUN, SegmentResult
 
     o = options
-    fj, fjt, solve = homotopy.compiled_kernels()
+    fj, fjt, factor, apply = homotopy.compiled_kernels()
     X = np.array(x0, dtype=complex, order="C")  # copies: the kernel needs writable, contiguous arrays
     N, n = X.shape
     TA = np.array(np.broadcast_to(np.asarray(t_a, dtype=complex), (N,)), order="C")
@@ -272,6 +359,6 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
     steps = np.empty(N, dtype=np.int64)
     Hout = np.empty(N)
     if N:
-        track_kernel(fj, fjt, solve, X, P1, P0, G, TA, TB, H0, opts, Xout, S, st, steps, Hout)
+        track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, S, st, steps, Hout)
     names = np.array([S_RUN, SUCCESS, S_SMALL, S_MANY, S_DIV], dtype=object)
     return SegmentResult(x=Xout, s=S, t=TA + S * (TB - TA), status=names[st], steps=steps, h=Hout)

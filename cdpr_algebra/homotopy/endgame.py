@@ -358,9 +358,11 @@ def mp_track(homotopy, x0, t_a, t_b, dps: int = 30, options: TrackerOptions | No
 # the pipeline
 # ---------------------------------------------------------------------------------------------
 def _track_to_endgame(homotopy, X0, idx, opts: SolveOptions, te, tr: TrackerOptions):
-    """Phase 1 for the paths ``idx``: t = 1 -> te, with retries. Returns (x, status, steps, retried)."""
+    """Phase 1 for the paths ``idx``: t = 1 -> te, with retries. Returns (x, status, steps, retried, h) with h the
+    last step length in t (absolute; NaN for retried paths)."""
     seg = track_segment(homotopy, X0[idx], 1.0, te, tr)
     x, status, steps = seg.x, seg.status.copy(), seg.steps.copy()
+    h = seg.h * abs(1.0 - te)
     retried = np.full(len(idx), "", dtype=object)
     bad = np.flatnonzero(status != SUCCESS)
     if bad.size and opts.retry_tight:
@@ -368,6 +370,7 @@ def _track_to_endgame(homotopy, X0, idx, opts: SolveOptions, te, tr: TrackerOpti
         x[bad], status[bad] = seg2.x, seg2.status
         steps[bad] += seg2.steps
         retried[bad] = "tight"
+        h[bad] = np.nan
         bad = bad[seg2.status != SUCCESS]
     if bad.size and opts.retry_mpmath and hasattr(homotopy, "mp_evaluate_all"):
         for i in bad[: opts.max_mpmath_paths]:
@@ -376,11 +379,13 @@ def _track_to_endgame(homotopy, X0, idx, opts: SolveOptions, te, tr: TrackerOpti
             retried[i] = "mpmath"
             if st == SUCCESS:
                 x[i], status[i] = xm, SUCCESS
-    return x, status, steps, retried
+                h[i] = np.nan
+    return x, status, steps, retried, h
 
 
-def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions):
-    """Phases 2-3 for paths at t = te. Returns lists of per-path tuples."""
+def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
+    """Phases 2-3 for paths at t = te (``h``: step lengths in t that phase 1 ended with, to start phase 2 with;
+    NaN or None: the tracker's initial step). Returns lists of per-path tuples."""
     eo = opts.endgame
     te = eo.endgame_start
     N = len(x_te)
@@ -389,7 +394,10 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions):
     wind = np.ones(N, dtype=int)
     acc = np.full(N, np.inf)
     tfin = np.zeros(N, dtype=complex)
-    seg = track_segment(homotopy, x_te, te, 0.0, tr)
+    h0 = None
+    if h is not None:
+        h0 = np.where(np.isfinite(h), np.asarray(h, dtype=float) / abs(te), tr.initial_step)
+    seg = track_segment(homotopy, x_te, te, 0.0, tr, h0=h0)
     steps = seg.steps.copy()
     reached = seg.status == SUCCESS
     xr, upd, res, cond, quad = refine(homotopy, seg.x[reached], 0.0, tol=eo.refine_tol)
@@ -439,7 +447,7 @@ def _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried):
 
 def _run(homotopy, X0, idx, opts: SolveOptions, tr: TrackerOptions):
     te = opts.endgame.endgame_start
-    x, st1, steps, retried = _track_to_endgame(homotopy, X0, idx, opts, te, tr)
+    x, st1, steps, retried, h = _track_to_endgame(homotopy, X0, idx, opts, te, tr)
     n = len(idx)
     status = st1.copy()
     wind = np.ones(n, dtype=int)
@@ -447,7 +455,7 @@ def _run(homotopy, X0, idx, opts: SolveOptions, tr: TrackerOptions):
     tfin = np.full(n, te, dtype=complex)
     ok = np.flatnonzero(st1 == SUCCESS)
     if ok.size:
-        xo, so, wo, ao, to, sto = _finish(homotopy, x[ok], opts, tr)
+        xo, so, wo, ao, to, sto = _finish(homotopy, x[ok], opts, tr, h[ok])
         x[ok], status[ok], wind[ok], acc[ok], tfin[ok] = xo, so, wo, ao, to
         steps[ok] += sto
     return _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried)

@@ -96,7 +96,7 @@ class ParameterHomotopy:
         return p, dp
 
     def compiled_kernels(self):
-        """The system's compiled evaluators ``(fj, fjt)`` for :mod:`.compiled`, or None (numpy tracking)."""
+        """The system's compiled kernels ``(fj, fjt, factor, apply)`` for :mod:`.compiled`, or None (numpy tracking)."""
         from . import compiled
 
         get = getattr(self.system, "compiled_kernels", None)
