@@ -190,13 +190,13 @@ def _stage(fjt, factor, apply, x, t, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs
          cache=True, error_model="numpy", nogil=True)
 def track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, Sout, status, steps, Hout):
     """Track every row of X from t = TA[i] to TB[i] (see module doc).  ``opts`` = (initial_step, max_step,
-    min_step, max_steps, predictor_tol, corrector_tol, max_contraction, max_norm, noise_tol); rows of P1, P0,
-    G are per path when they have as many rows as X, else row 0 serves every path."""
+    min_step, max_steps, predictor_tol, corrector_tol, max_contraction, max_norm, noise_tol, step_safety); rows
+    of P1, P0, G are per path when they have as many rows as X, else row 0 serves every path."""
     N, n = X.shape
     neq = n
     mp = P1.shape[1]
     max_step, min_step, max_steps = opts[1], opts[2], int(opts[3])
-    ptol, ctol, mc, max_norm, noise_tol = opts[4], opts[5], opts[6], opts[7], opts[8]
+    ptol, ctol, mc, max_norm, noise_tol, safety = opts[4], opts[5], opts[6], opts[7], opts[8], opts[9]
     p = np.empty(mp, np.complex128)
     dp = np.empty(mp, np.complex128)
     F = np.empty(neq, np.complex128)
@@ -237,6 +237,7 @@ def track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, S
         st = RUNNING
         have_lu = False  # (Jc, Ac, pivc) factor H_x near x (at the predicted point of the last accepted step)
         have_k1 = False  # k1 is that of the current x (after a rejected step)
+        rejected = False  # the last step was rejected (the next one does not grow)
         if dt == 0:
             st = OK
         while st == RUNNING:
@@ -307,9 +308,9 @@ def track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, S
                 for c in range(n):
                     x[c] = x2[c]
                 s = 1.0 if sn >= 1.0 - 1e-15 else sn
-            ratio = 0.9 * (ptol / max(e1, 1e-300)) ** 0.2
+            ratio = safety * (ptol / max(e1, 1e-300)) ** 0.2
             if ok:
-                hn = min(ha * min(max(ratio, 1.0), 2.5), max_step)
+                hn = min(ha * min(max(ratio, 1.0), 1.0 if rejected else 2.5), max_step)
             elif finite:
                 hn = ha * min(max(ratio, 0.1), 0.5)
             else:
@@ -318,6 +319,7 @@ def track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, S
                 h = max(h, hn)
             else:
                 h = hn
+            rejected = not ok
             if s >= 1.0:
                 st = OK
             elif ok and scale > max_norm:
@@ -352,7 +354,7 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
         H0 = np.array(np.clip(np.broadcast_to(np.asarray(h0, dtype=float), (N,)), o.min_step, o.max_step), order="C")
     P1, P0, G = homotopy.path_parameters()
     opts = np.array([o.initial_step, o.max_step, o.min_step, o.max_steps, o.predictor_tol, o.corrector_tol,
-                     o.max_contraction, o.max_norm, o.noise_tol], dtype=float)
+                     o.max_contraction, o.max_norm, o.noise_tol, o.step_safety], dtype=float)
     Xout = np.empty_like(X)
     S = np.empty(N)
     st = np.empty(N, dtype=np.int64)

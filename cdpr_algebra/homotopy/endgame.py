@@ -308,6 +308,7 @@ def mp_track(homotopy, x0, t_a, t_b, dps: int = 30, options: TrackerOptions | No
         ta, tb = mpmath.mpc(complex(t_a)), mpmath.mpc(complex(t_b))
         dt = tb - ta
         s, h = mpmath.mpf(0), mpmath.mpf(o.initial_step)
+        rejected = False
         tol_p = mpmath.mpf(o.predictor_tol)
         tol_c = mpmath.mpf(10) ** (-(dps - 8))
         steps = 0
@@ -341,14 +342,16 @@ def mp_track(homotopy, x0, t_a, t_b, dps: int = 30, options: TrackerOptions | No
                 okk = d[0] <= tol_p and d[2] <= max(tol_c, d[1] * o.max_contraction) and d[1] <= o.max_contraction * d[0] + tol_c
             except (ZeroDivisionError, ValueError):
                 okk, d = False, [mpmath.inf]
+            safety = o.step_safety
             if okk:
                 x, s = xc, s + hh
-                ratio = 0.9 * (tol_p / max(d[0], mpmath.mpf(10) ** -300)) ** 0.2
-                h = min(hh * min(max(ratio, 1), 2.5), o.max_step)
+                ratio = safety * (tol_p / max(d[0], mpmath.mpf(10) ** -300)) ** 0.2
+                h = min(hh * min(max(ratio, 1), 1 if rejected else 2.5), o.max_step)
             else:
-                h = hh * (0.25 if not mpmath.isfinite(d[0]) else min(max(0.9 * (tol_p / d[0]) ** 0.2, 0.1), 0.5))
+                h = hh * (0.25 if not mpmath.isfinite(d[0]) else min(max(safety * (tol_p / d[0]) ** 0.2, 0.1), 0.5))
                 if h < o.min_step * 1e-3:
                     return np.array([complex(c) for c in x]), STEP_TOO_SMALL, steps
+            rejected = not okk
             if nrm(x) > o.max_norm:
                 return np.array([complex(c) for c in x]), DIVERGED, steps
         return np.array([complex(c) for c in x]), SUCCESS, steps

@@ -9,8 +9,11 @@ a path solves H(x(s), t(s)) = 0, hence dx/ds = -H_x^{-1} H_t (t_b - t_a). One st
    (|d2| <= ``max_contraction`` |d1|, or both are below 1e-9 / 1e-10: round-off level) and |d2| <= ``corrector_tol`` (1 + |x|);
    or, on an ill-conditioned stretch, when a third Newton update shows stagnation at the round-off
    floor (<= ``noise_tol``);
-4. next step h * clip(0.9 (predictor_tol / |d1|)^(1/5), ...): the RK4 local error is O(h^5), so this
-   keeps the predictor error near the tolerance; rejected steps shrink by at least 2.
+4. next step h * clip(``step_safety`` (predictor_tol / |d1|)^(1/5), ...): the RK4 local error is O(h^5), so
+   this keeps the predictor error near the tolerance; rejected steps shrink by at least 2, and the step after a
+   rejection does not grow.  (Measured on 3 DGP subproblems of seed 000 Test 3, 1860 paths: safety 0.9 and
+   growth right after a rejection rejected 28 % of the steps; 0.8 and no growth 13 %, 16 % fewer steps in all,
+   the same endpoints.)
 
 Homotopies that offer compiled evaluators (``compiled_kernels()``) are tracked by the same step compiled
 with numba, one path at a time (:mod:`.compiled`).  Otherwise all active paths step together: every stage is one call of the compiled evaluator on
@@ -50,7 +53,8 @@ class TrackerOptions:
     * ``max_contraction`` [0.2]: |d2| / |d1| must not exceed this (Newton is converging);
     * ``max_norm`` [1e10]: |x| beyond this is ``diverged``;
     * ``noise_tol`` [1e-6]: a step whose Newton updates stagnate (third update <= 2 x second) below this
-      is accepted as limited by round-off (ill-conditioned stretch of a path).
+      is accepted as limited by round-off (ill-conditioned stretch of a path);
+    * ``step_safety`` [0.8]: safety factor of the step-size rule (step 4 of the module doc).
     """
 
     initial_step: float = 0.05
@@ -62,6 +66,7 @@ class TrackerOptions:
     max_contraction: float = 0.2
     max_norm: float = 1e10
     noise_tol: float = 1e-6
+    step_safety: float = 0.8
 
     def tightened(self, factor: float = 100.0) -> "TrackerOptions":
         """Stricter settings for re-tracking suspicious paths."""
@@ -119,6 +124,7 @@ def track_segment(homotopy, x0, t_a, t_b, options: TrackerOptions | None = None,
     s = np.zeros(N)
     h = np.full(N, o.initial_step) if h0 is None else np.clip(np.broadcast_to(h0, (N,)).astype(float), o.min_step, o.max_step)
     steps = np.zeros(N, dtype=int)
+    rejected = np.zeros(N, dtype=bool)  # the last step of the path was rejected
     status = np.full(N, RUNNING, dtype=object)
     active = np.flatnonzero(dt != 0)
     status[dt == 0] = SUCCESS
@@ -171,12 +177,13 @@ def track_segment(homotopy, x0, t_a, t_b, options: TrackerOptions | None = None,
         x[acc] = x2[ok]
         s[acc] = np.where(sn[ok] >= 1.0 - 1e-15, 1.0, sn[ok])
         with np.errstate(divide="ignore", invalid="ignore"):
-            ratio = 0.9 * (o.predictor_tol / np.maximum(e1, 1e-300)) ** 0.2
-        grow = np.clip(ratio, 1.0, 2.5)
+            ratio = o.step_safety * (o.predictor_tol / np.maximum(e1, 1e-300)) ** 0.2
+        grow = np.clip(ratio, 1.0, np.where(rejected[a], 1.0, 2.5))
         shrink = np.where(finite, np.clip(ratio, 0.1, 0.5), 0.25)
         hn = np.where(ok, np.minimum(ha * grow, o.max_step), ha * shrink)
         # keep a grown step after a final short step to the end
         h[a] = np.where(ok & (ha < h[a]), np.maximum(h[a], hn), hn)
+        rejected[a] = ~ok
         done = s[a] >= 1.0
         status[a[done]] = SUCCESS
         big = ok & (scale > o.max_norm)
