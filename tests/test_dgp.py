@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from cdpr_algebra.dgp import available_m, dgp, prune
-from cdpr_algebra.pose import matrix_from_angles
 from cdpr_algebra.robot import Robot, load_robot
+from equilibria import hang_platform
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLES = json.loads((ROOT / "tests" / "data" / "seed000_tables.json").read_text())["tables"]
@@ -127,12 +127,7 @@ def equilibrium_robot(m, n_slack, seed):
     # Q G x d = -Mo: G = d x (-Mo / Q) + t d, t puts G a bit below the anchors
     G = np.cross(d, -Mo / Q)
     G = G + (np.mean(B[:, 2]) - 0.3 - G[2]) * np.array([0, 0, 1.0])
-    rho = rng.uniform(3.0, 6.0, size=m)
-    A = B + rho[:, None] * U
-    R = matrix_from_angles(*rng.uniform(-np.pi, np.pi, 3) * np.array([1, 0.4, 1]))
-    p = G + rng.uniform(-0.2, 0.2, 3)
-    b = (B - p) @ R  # R^T (B_i - p)
-    g = R.T @ (G - p)
+    A, b, g, rho, p, R = hang_platform(rng, B, U, G)
     # slack cables
     bs = rng.uniform(-0.4, 0.4, size=(n_slack, 3))
     Bs = p + bs @ R.T

@@ -16,6 +16,7 @@ from cdpr_algebra.igp_orientation import igp_orientation
 from cdpr_algebra.igp_position import igp_position
 from cdpr_algebra.pose import matrix_from_angles
 from cdpr_algebra.robot import Robot
+from equilibria import hang_platform
 
 
 def _hits(res, p, R, L):
@@ -92,12 +93,7 @@ def equilibrium_robot(m, seed):
         G = G0 + sum(c * e for c, e in zip(z[m:], (e1, e2)))
         if np.all(tau > 0.05 * Q):
             break
-    rho = rng.uniform(3.0, 6.0, size=m)
-    A = B + rho[:, None] * U
-    R = matrix_from_angles(*rng.uniform(-np.pi, np.pi, 3) * np.array([1, 0.4, 1]))
-    p = G + rng.uniform(-0.2, 0.2, 3)
-    b = (B - p) @ R  # R^T (B_i - p)
-    g = R.T @ (G - p)
+    A, b, g, rho, p, R = hang_platform(rng, B, U, G)
     robot = Robot(A, b, g, Q, d, rho, name=f"equilibrium{m}")
     return robot, p, R, tau
 
