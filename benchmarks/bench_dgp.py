@@ -46,6 +46,7 @@ def bench(path, repeat, jobs):
     failed = sum(s.failed_paths for s in res.subproblems)
     paths = sum(s.paths for s in res.subproblems)
     print(f"{robot.name}: first run {first:.2f} s, median of {repeat}: {statistics.median(times):.2f} s "
+          f"(range {min(times):.2f}-{max(times):.2f} s) "
           f"(jobs={jobs}); {len(res.solutions)} admissible ({', '.join(f'm={m}: {c}' for m, c in counts.items() if c)}), "
           f"{len(res.stable)} stable; {len(res.subproblems)} subproblems ({skipped} skipped), {paths} paths, "
           f"{failed} failed", flush=True)
