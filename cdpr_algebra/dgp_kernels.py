@@ -20,9 +20,9 @@ import numba as nb
 import numpy as np
 from numba import types as nbt
 
-from .homotopy.compiled import APPLY_SIG, FACTOR_SIG, SOLVE_SIG, lu_apply_sparse_lead, lu_factor_sparse_lead
+from .homotopy.compiled import APPLY_SIG, FACTOR_SIG, lu_apply_sparse_lead, lu_factor_sparse_lead
 
-__all__ = ["taut_fj", "taut_fjt", "taut_factor", "taut_apply", "taut_solve"]
+__all__ = ["taut_fj", "taut_fjt", "taut_factor", "taut_apply"]
 
 _C1 = nbt.complex128[::1]
 _C2 = nbt.complex128[:, ::1]
@@ -223,14 +223,3 @@ def taut_apply(J, A, piv, b, out):
         for j in range(3, 9):
             acc -= J[3 + q, j] * out[j]
         out[9 + q] = acc
-
-
-@nb.njit(SOLVE_SIG, cache=True, error_model="numpy")
-def taut_solve(J, A, b, out):
-    """out = J^{-1} b (:func:`taut_factor` then :func:`taut_apply`); False (and NaNs in out) when J is singular."""
-    piv = np.empty(b.shape[0], np.int64)
-    if not taut_factor(J, A, piv):
-        out[:] = np.nan
-        return False
-    taut_apply(J, A, piv, b, out)
-    return True

@@ -72,8 +72,8 @@ def test_compiled_tracker_equals_numpy_tracker(m, gamma):
 
 @pytest.mark.parametrize("m", [2, 4, 6])
 def test_structured_solve_equals_dense(m):
-    from cdpr_algebra.dgp_kernels import taut_solve
-    from cdpr_algebra.homotopy.compiled import dense_solve
+    from cdpr_algebra.dgp_kernels import taut_apply, taut_factor
+    from cdpr_algebra.homotopy.compiled import dense_apply, dense_factor, solve_with
 
     fam = taut_family(m)
     rng = np.random.default_rng(20 + m)
@@ -83,12 +83,20 @@ def test_structured_solve_equals_dense(m):
     J = np.zeros((fam.neq, fam.n), complex)
     taut_fj(x, p, F, J)
     b = rng.normal(size=fam.n) + 1j * rng.normal(size=fam.n)
-    A = np.empty_like(J)
-    d1, d2 = np.empty(fam.n, complex), np.empty(fam.n, complex)
-    assert taut_solve(J, A, b, d1) and dense_solve(J, A, b, d2)
+    d1 = solve_with(taut_factor, taut_apply, J, b)
+    d2 = solve_with(dense_factor, dense_apply, J, b)
     assert np.abs(J @ d1 - b).max() <= 1e-12 * np.abs(b).max() * np.linalg.cond(J)
     assert np.abs(d1 - np.linalg.solve(J, b)).max() <= 1e-10 * np.abs(d2).max()
     assert np.abs(d2 - np.linalg.solve(J, b)).max() <= 1e-10 * np.abs(d2).max()
-    # a singular Jacobian (two equal rows) gives False and no silent garbage
+    # the factors serve several right-hand sides (the tracker reuses them)
+    n = fam.n
+    A, piv, out = np.zeros((n, n), complex), np.zeros(n, np.int64), np.empty(n, complex)
+    assert taut_factor(J, A, piv)
+    for _ in range(3):
+        b = rng.normal(size=n) + 1j * rng.normal(size=n)
+        taut_apply(J, A, piv, b, out)
+        assert np.abs(out - np.linalg.solve(J, b)).max() <= 1e-10 * np.abs(out).max()
+    # a singular Jacobian (two equal rows) gives None and no silent garbage
     J[7] = J[6]
-    assert not taut_solve(J, A, b, d1) or not np.all(np.isfinite(d1)) or np.abs(J @ d1 - b).max() > 1e-6
+    d = solve_with(taut_factor, taut_apply, J, b)
+    assert d is None or not np.all(np.isfinite(d)) or np.abs(J @ d - b).max() > 1e-6

@@ -37,7 +37,7 @@ import numba as nb
 from numba import types as nbt
 
 __all__ = ["available", "track_kernel", "track_segment_compiled", "lu_factor_sparse_lead", "lu_apply_sparse_lead",
-           "dense_factor", "dense_apply", "dense_solve", "FACTOR_SIG", "APPLY_SIG", "SOLVE_SIG"]
+           "dense_factor", "dense_apply", "solve_with", "FACTOR_SIG", "APPLY_SIG"]
 
 # status codes of the kernel (mapped to the strings of .results by the caller)
 RUNNING, OK, STEP_TOO_SMALL, TOO_MANY_STEPS, DIVERGED = 0, 1, 2, 3, 4
@@ -59,7 +59,6 @@ _FJT = nbt.FunctionType(nbt.void(_C1, _C1, _C1, _C1, _C2, _C1))
 _I1 = nbt.int64[::1]
 FACTOR_SIG = nbt.boolean(_C2, _C2, _I1)
 APPLY_SIG = nbt.void(_C2, _C2, _I1, _C1, _C1)
-SOLVE_SIG = nbt.boolean(_C2, _C2, _C1, _C1)
 _FACTOR = nbt.FunctionType(FACTOR_SIG)
 _APPLY = nbt.FunctionType(APPLY_SIG)
 
@@ -133,16 +132,18 @@ def dense_apply(J, A, piv, b, out):
     lu_apply_sparse_lead(A, piv, out, n, 0, n)
 
 
-@nb.njit(SOLVE_SIG, cache=True, error_model="numpy")
-def dense_solve(J, A, b, out):
-    """out = J^{-1} b (dense, partial pivoting) using the workspace A; J and b untouched; False (and NaNs in
-    out) when J is singular."""
-    piv = np.empty(b.shape[0], np.int64)
-    if not dense_factor(J, A, piv):
-        out[:] = np.nan
-        return False
-    dense_apply(J, A, piv, b, out)
-    return True
+def solve_with(factor, apply, J, b):
+    """J^{-1} b by a (factor, apply) pair of compiled kernels, from Python (checks and tests); None when the
+    factorization fails (J singular)."""
+    J = np.ascontiguousarray(J, dtype=complex)
+    n = J.shape[1]
+    A = np.zeros((n, n), complex)
+    piv = np.zeros(n, np.int64)
+    if not factor(J, A, piv):
+        return None
+    out = np.empty(n, complex)
+    apply(J, A, piv, np.ascontiguousarray(b, dtype=complex), out)
+    return out
 
 
 @nb.njit(cache=True, error_model="numpy")
