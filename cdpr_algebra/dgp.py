@@ -20,8 +20,9 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   geometries, e.g. coplanar base and platform, have some), not as failed.  Any other suspect path (failed, or
   ending on another path's endpoint) is re-tracked by the engine in projective coordinates along the same
   parameter path with tightened steps.  If failed paths remain, the subproblem is re-run once
-  with a random gamma and another seed and the run with fewer failures is kept; remaining failures are
-  reported (``failed_paths``), never hidden.
+  with a random gamma and another seed, where paths that fail again are also tracked in arbitrary precision
+  (mpmath, 30 digits, at most ``MP_RETRY_PATHS`` = 4 paths), and the run with fewer failures is kept; remaining
+  failures are reported (``failed_paths``), never hidden.
 
 **Pruning** (seed 000 Sec. 4.1, recorded as the ``skipped`` reason): with D_ij = |A_i - A_j| and
 d_ij = |b_i' - b_j'|, every pair of cables needs D_ij <= rho_i + rho_j + d_ij (B_i and B_j lie within
@@ -367,6 +368,7 @@ def _solve_one_cable(robot, rho, i):
     return sub, sols
 
 
+MP_RETRY_PATHS = 4  # failed paths per subproblem tracked in arbitrary precision in the re-run
 DIVERGED_NORM = 1e3  # normalized coordinates: the robot has size 1, every admissible equilibrium has |x| < ~10
 
 
@@ -389,12 +391,14 @@ def _track(m, target, seed, gamma):
             return False
         return p.status == SINGULAR or (p.status in FAILURES and abs(p.t) <= 0.1 + 1e-12)
 
-    # no in-place double / mpmath retries (slow): suspect paths are re-tracked in projective coordinates.
+    # no in-place double retries: suspect paths are re-tracked in projective coordinates; in the re-run with a
+    # new gamma (only when failures remain) paths still failed after that are tracked in arbitrary precision
+    # (at most MP_RETRY_PATHS per subproblem: the mpmath tracker is pure Python, seconds to minutes per path).
     # Predictor tolerance 1e-4 (default 1e-5): paths from the stored generic set are nonsingular, and any two
     # paths ending on one point are re-tracked with tightened steps (path jumping cannot go unnoticed)
     # The Cauchy endgame gives up on paths beyond DIVERGED_NORM (counted as diverging below).
     options = SolveOptions(tracker=TrackerOptions(predictor_tol=1e-4), endgame=EndgameOptions(give_up_norm=DIVERGED_NORM),
-                           retry_tight=False, retry_mpmath=False)
+                           retry_tight=False, retry_mpmath=gamma, max_mpmath_paths=MP_RETRY_PATHS)
     res = solve_parameter_homotopy(fast_family(m), p_gen, X_gen, target, seed=seed, gamma=gamma, options=options,
                                    ignore=diverging)
     failed = sum(1 for p in res.track.paths if p.status in FAILURES and not diverging(p))

@@ -4,6 +4,7 @@ homotopies, monodromy, stored instances, determinism."""
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -241,6 +242,41 @@ def test_parameter_homotopy_variants_agree():
         sets.append(np.array(sorted(r.solution_array().tolist(), key=lambda v: (round(v[0].real, 6), round(v[0].imag, 6)))))
     np.testing.assert_allclose(sets[0], sets[1], atol=1e-10)
     np.testing.assert_allclose(sets[0], sets[2], atol=1e-10)
+
+
+def test_parameter_homotopy_arbitrary_precision_round(monkeypatch):
+    """Paths that every double-precision attempt fails (forced here: every segment from t = 1 reports a failed
+    step) are tracked in arbitrary precision last, along the same parameter path: the solutions are the ones
+    of an ordinary run; without ``retry_mpmath`` they stay failed, and ``max_mpmath_paths`` bounds the round."""
+    import cdpr_algebra.homotopy.endgame as eg
+    from cdpr_algebra.homotopy.results import STEP_TOO_SMALL
+
+    x, y, a, b = sp.symbols("x y a b")
+    S = PolynomialSystem([x**2 + a * y - 1, y**2 + b * x * y - 2], [x, y], [a, b])
+    p1 = np.array([0.3 + 0.7j, -0.2 + 0.4j])
+    X1 = solve(S.substitute_parameters(p1), seed=0).solution_array()
+    p0 = np.array([1.5, -0.5])
+    ref = solve_parameter_homotopy(S, p1, X1, p0, seed=1, options=NO_MP)
+    assert len(ref.nonsingular) == 4
+
+    real_segment = eg.track_segment
+
+    def failing(homotopy, x0, t_a, t_b, options=None, h0=None):
+        r = real_segment(homotopy, x0, t_a, t_b, options, h0)
+        if np.all(np.asarray(t_a) == 1.0):  # phase 1 (and every retry of it) fails
+            r = replace(r, status=np.full(len(r.status), STEP_TOO_SMALL, dtype=object))
+        return r
+
+    monkeypatch.setattr(eg, "track_segment", failing)
+    off = solve_parameter_homotopy(S, p1, X1, p0, seed=1, options=NO_MP)
+    assert off.summary().failed == 4 and not off.nonsingular
+    some = solve_parameter_homotopy(S, p1, X1, p0, seed=1, options=replace(FAST, max_mpmath_paths=2))
+    assert some.summary().failed == 2 and len(some.nonsingular) == 2
+    on = solve_parameter_homotopy(S, p1, X1, p0, seed=1, options=FAST)
+    assert on.summary().failed == 0 and [p.retried for p in on.track.paths] == ["mpmath"] * 4
+    key = lambda v: (round(v[0].real, 6), round(v[0].imag, 6))  # noqa: E731
+    np.testing.assert_allclose(sorted(on.solution_array().tolist(), key=key),
+                               sorted(ref.solution_array().tolist(), key=key), atol=1e-10)
 
 
 def _dense_quadric_family(n=3):

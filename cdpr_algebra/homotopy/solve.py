@@ -19,7 +19,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .endgame import SolveOptions, duplicate_groups
+from .endgame import SolveOptions, _finish, _records, duplicate_groups, mp_track
 from .projective import from_chart, projectivize, to_chart
 from .results import AT_INFINITY, FAILURES, SINGULAR, SUCCESS, Solution, SolveResult, TrackResult
 from .homotopies import ParameterHomotopy
@@ -91,6 +91,21 @@ def _track_segments(system, homs, X, options, seed):
     return paths
 
 
+def _mp_retrack(homs, x0, index, options):
+    """Path ``index`` from x0 through the parameter segments ``homs`` in arbitrary precision (mpmath, ``mp_dps``
+    digits) up to the endgame zone of the last one, then the endgame in double precision; a PathResult with
+    ``retried="mpmath"``, or None when the arbitrary-precision tracking fails too."""
+    te = options.endgame.endgame_start
+    x, steps = x0, 0
+    for k, hom in enumerate(homs):
+        x, status, ns = mp_track(hom, x, 1.0, te if k == len(homs) - 1 else 0.0, options.mp_dps, options.tracker)
+        steps += ns
+        if status != SUCCESS:
+            return None
+    xo, so, wo, ao, to, sto = _finish(homs[-1], x[None, :], options, options.tracker)
+    return _records(homs[-1], np.array([index]), xo, so, wo, ao, to, sto + steps, np.array(["mpmath"], dtype=object))[0]
+
+
 def _suspects(paths, tol):
     """Failed paths, singular endpoints reached with winding number 1 (ill-conditioned in affine coordinates,
     e.g. of large norm), and successful paths that end on the same point as another one (path jumping)."""
@@ -113,6 +128,9 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
     path, with step control tightened 10x, 100x, ..., up to ``retries`` rounds; a path keeps the first
     successful, distinct endpoint it reaches (``retried`` says it was re-run).  (Re-tracking a subset of
     paths along another route would not do: its paths may end on solutions that other paths already reached.)
+    Then, with ``options.retry_mpmath``, paths still failed are tracked once more in arbitrary precision
+    (:func:`.endgame.mp_track`, ``options.mp_dps`` digits, at most ``options.max_mpmath_paths`` of them, slow:
+    pure Python) along the same parameter path, the endgame in double precision (``retried="mpmath"``).
     ``ignore(path) -> bool`` exempts paths from the retries (e.g. the DGP's paths diverging to infinity).
     """
     options = options or SolveOptions()
@@ -120,6 +138,8 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
     t0 = time.perf_counter()
     X = np.asarray(start_solutions, dtype=complex)
     homs = parameter_homotopy(system, start_parameters, target_parameters, rng=rng, detour=detour, gamma=gamma)
+    asked = options
+    options = replace(options, retry_mpmath=False)  # double-precision retries first, arbitrary precision last
     paths = _track_segments(system, homs, X, options, seed)
     if retries:
         proj, chart = projectivize(system)
@@ -149,5 +169,11 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
                 <= options.duplicate_tol * (1 + np.max(np.abs(candidate.endpoint))))
             if (status == SUCCESS and distinct) or (paths[i].status in FAILURES and status not in FAILURES):
                 paths[i] = candidate
-    track = TrackResult(paths=tuple(paths), seconds=time.perf_counter() - t0, seed=seed, options=options.to_dict())
+    if asked.retry_mpmath and hasattr(homs[0], "mp_evaluate_all"):
+        redo = [i for i, p in enumerate(paths) if p.status in FAILURES and (ignore is None or not ignore(p))]
+        for i in redo[: options.max_mpmath_paths]:
+            q = _mp_retrack(homs, X[i], i, options)
+            if q is not None and q.status not in FAILURES:
+                paths[i] = q
+    track = TrackResult(paths=tuple(paths), seconds=time.perf_counter() - t0, seed=seed, options=asked.to_dict())
     return SolveResult(solutions=group_solutions(track, options.duplicate_tol, options.endgame.cluster_tol), track=track, start_system="parameter")
