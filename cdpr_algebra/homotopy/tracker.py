@@ -16,7 +16,8 @@ a path solves H(x(s), t(s)) = 0, hence dx/ds = -H_x^{-1} H_t (t_b - t_a). One st
    the same endpoints.)
 
 Homotopies that offer compiled evaluators (``compiled_kernels()``) are tracked by the same step compiled
-with numba, one path at a time (:mod:`.compiled`).  Otherwise all active paths step together: every stage is one call of the compiled evaluator on
+with numba, one path at a time (:mod:`.compiled`; it also reuses LU factors: a chord second Newton update and
+the Newton factors for the next k1, so its error estimates and step counts differ slightly from these).  Otherwise all active paths step together: every stage is one call of the compiled evaluator on
 (npaths, n) points and one ``np.linalg.solve`` on (npaths, n, n). Paths that reach s = 1 or fail
 leave the active set. Failures: ``step_too_small`` (h < ``min_step``), ``too_many_steps``,
 ``diverged`` (|x| > ``max_norm`` or a non-finite value).
