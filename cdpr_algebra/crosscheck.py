@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .dgp import lengths_and_taut_sets
+from .dgp import solve_each_taut_set
 from .interval_bp import BPOptions, solve_taut_set_interval
 from .jsonable import jsonable
 
@@ -140,17 +140,9 @@ def crosscheck(robot, lengths=None, sets=None, max_m: int = 6, options: BPOption
                progress=None) -> CrosscheckResult:
     """Compare the solvers on every taut set of m = 1 .. min(n, 6, max_m) cables, or on the 0-based ``sets``.
     ``progress(comparison, done, total)`` is called after each subproblem."""
-    t0 = time.perf_counter()
-    rho, every_set = lengths_and_taut_sets(robot, lengths, max_m)
-    if sets is None:
-        sets = every_set
-    out = []
-    for k, c in enumerate(sets):
-        comp = compare_taut_set(robot, rho, c, options, seed)
-        out.append(comp)
-        if progress:
-            progress(comp, k + 1, len(sets))
-    return CrosscheckResult(robot.name, rho, tuple(out), time.perf_counter() - t0)
+    rho, out, seconds = solve_each_taut_set(robot, lengths, max_m, sets,
+                                            lambda rho, c: compare_taut_set(robot, rho, c, options, seed), progress)
+    return CrosscheckResult(robot.name, rho, tuple(out), seconds)
 
 
 def _fmt_solution(tag, s) -> str:

@@ -62,7 +62,8 @@ from .jsonable import jsonable
 from .pose import angles_from_matrix, rotation_taking
 from .stability import skew_stack, stability_classes
 
-__all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune"]
+__all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune",
+           "lengths_and_taut_sets", "solve_each_taut_set"]
 
 DATA = Path(__file__).resolve().parent / "data"
 REAL_TOL = 1e-6
@@ -502,6 +503,20 @@ def lengths_and_taut_sets(robot, lengths=None, max_m: int = 6):
     if rho.shape != (robot.n,) or np.any(rho <= 0):
         raise ValueError(f"expected {robot.n} positive cable lengths")
     return rho, [c for m in range(1, min(robot.n, 6, max_m) + 1) for c in itertools.combinations(range(robot.n), m)]
+
+
+def solve_each_taut_set(robot, lengths, max_m, sets, solve_one, progress=None):
+    """(rho, [solve_one(rho, c) for every taut set c], seconds), one set after the other: over the 0-based
+    ``sets``, or every set of :func:`lengths_and_taut_sets`; ``progress(result, done, total)`` after each."""
+    t0 = time.perf_counter()
+    rho, every_set = lengths_and_taut_sets(robot, lengths, max_m)
+    sets = every_set if sets is None else sets
+    out = []
+    for k, c in enumerate(sets):
+        out.append(solve_one(rho, c))
+        if progress:
+            progress(out[-1], k + 1, len(sets))
+    return rho, out, time.perf_counter() - t0
 
 
 def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int = 6, seed: int = 0,

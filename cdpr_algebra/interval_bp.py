@@ -80,7 +80,7 @@ from fractions import Fraction
 import numba as nb
 import numpy as np
 
-from .dgp import lengths_and_taut_sets
+from .dgp import solve_each_taut_set
 from .interval_boxes import (Interval, QuadraticSystem, _float_inverse, _gamma, _midrad, enclose_fraction, inv_sqr,
                              mr_matmul, newton, s_add, s_div, s_down, s_fmax, s_fmin, s_inv_sqr, s_mid, s_midrad,
                              s_mr_radius, s_mul, s_sqr, s_sub, s_up, sq, stack, up)
@@ -2127,14 +2127,6 @@ def _one_cable_search(al, be, hh, opts):
 def interval_dgp(robot, lengths=None, max_m: int = 6, progress=None, options: BPOptions | None = None,
                  sets=None) -> IntervalDGPResult:
     """Interval B&P over every set of m = 1 .. min(n, 6, max_m) taut cables (or the 0-based ``sets``)."""
-    t0 = time.perf_counter()
-    rho, every_set = lengths_and_taut_sets(robot, lengths, max_m)
-    if sets is None:
-        sets = every_set
-    subs = []
-    for k, c in enumerate(sets):
-        sub = solve_taut_set_interval(robot, rho, c, options)
-        subs.append(sub)
-        if progress:
-            progress(sub, k + 1, len(sets))
-    return IntervalDGPResult(tuple(subs), time.perf_counter() - t0)
+    _, subs, seconds = solve_each_taut_set(robot, lengths, max_m, sets,
+                                           lambda rho, c: solve_taut_set_interval(robot, rho, c, options), progress)
+    return IntervalDGPResult(tuple(subs), seconds)
