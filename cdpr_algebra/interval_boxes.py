@@ -942,6 +942,24 @@ def _float_inverse(A, C):
 
 
 @nb.njit(cache=True, error_model="numpy")
+def _sparse_midrad_sums(am_, ar_, ptr, row, bm_, br_, e, S2):
+    """The sums of a midpoint-radius dot product of the vector (am_, ar_) with the sparse column e (rows
+    row[ptr[e]:ptr[e+1]], midpoints bm_, radii br_): S1 = sum am bm (float), S3 = sum |am| |bm|, and the radius part
+    S2 (starting from the given bound) += |am| br + ar (|bm| + br) rounded up, for :func:`s_mr_radius` /
+    :func:`s_mr_bound`."""
+    S1 = 0.0
+    S3 = 0.0
+    for q in range(ptr[e], ptr[e + 1]):
+        k = row[q]
+        am, ar = am_[k], ar_[k]
+        bm, br = bm_[q], br_[q]
+        S1 += am * bm
+        S3 += abs(am) * abs(bm)
+        S2 += abs(am) * br + ar * s_up(abs(bm) + br)
+    return S1, S2, S3
+
+
+@nb.njit(cache=True, error_model="numpy")
 def _taylor_kernel(lo, hi, c0, jh_ptr, jh_row, jh_m, jh_r, jh_t, sf_ptr, sf_row, sf_m, sf_r, sf_t, pj, pk, scale,
                    iterations, gain, excluded, inner):
     """Compiled second-order operator of :meth:`QuadraticSystem.taylor` applied to each box (row of lo, hi (N, h)),
@@ -1002,16 +1020,7 @@ def _taylor_kernel(lo, hi, c0, jh_ptr, jh_row, jh_m, jh_r, jh_t, sf_ptr, sf_row,
             for k in range(h + 1):
                 asum = s_up(asum + s_up(abs(d0m[k]) + d0r[k]))
             for e in range(h * h):
-                S1 = 0.0
-                S2 = s_up(jh_t[e] * asum)
-                S3 = 0.0
-                for q in range(jh_ptr[e], jh_ptr[e + 1]):
-                    k = jh_row[q]
-                    am, ar = d0m[k], d0r[k]
-                    bm, br = jh_m[q], jh_r[q]
-                    S1 += am * bm
-                    S3 += abs(am) * abs(bm)
-                    S2 += abs(am) * br + ar * s_up(abs(bm) + br)
+                S1, S2, S3 = _sparse_midrad_sums(d0m, d0r, jh_ptr, jh_row, jh_m, jh_r, e, s_up(jh_t[e] * asum))
                 Jm[e // h, e % h] = S1
                 Jr[e // h, e % h] = s_mr_radius(S1, S2, S3 + S2, gJ, 2 * (h + 1))
             for i in range(h):
@@ -1067,16 +1076,7 @@ def _taylor_kernel(lo, hi, c0, jh_ptr, jh_row, jh_m, jh_r, jh_t, sf_ptr, sf_row,
             for k in range(nS):
                 asum = s_up(asum + s_up(abs(vin_m[k]) + vin_r[k]))
             for i in range(h):
-                S1 = 0.0
-                S2 = s_up(sf_t[i] * asum)
-                S3 = 0.0
-                for q in range(sf_ptr[i], sf_ptr[i + 1]):
-                    k = sf_row[q]
-                    am, ar = vin_m[k], vin_r[k]
-                    bm, br = sf_m[q], sf_r[q]
-                    S1 += am * bm
-                    S3 += abs(am) * abs(bm)
-                    S2 += abs(am) * br + ar * s_up(abs(bm) + br)
+                S1, S2, S3 = _sparse_midrad_sums(vin_m, vin_r, sf_ptr, sf_row, sf_m, sf_r, i, s_up(sf_t[i] * asum))
                 a, b = s_mr_bound(S1, S2, S3 + S2, gS, 2 * nS)
                 Sm[i], Sr[i] = s_midrad(a, b)
             # T = y - C S - [-b, b]
