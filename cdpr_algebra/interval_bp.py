@@ -1371,6 +1371,21 @@ def _sos_forward(tl, th, ql, qh):
 
 
 @nb.njit(cache=True, error_model="numpy")
+def _sos_narrow(tl, th, ql, qh, rl, rh):
+    """Forward sum S of the squares of (tl, th) against the range [rl, rh]: (0, S) when S already lies in it (the
+    projection would return the box itself), (-1, S) when they are disjoint (no solution in the box), else
+    (1, S cap [rl, rh]) to project back with :func:`_sos_backward`."""
+    Sl, Sh = _sos_forward(tl, th, ql, qh)
+    if Sl >= rl and Sh <= rh:
+        return 0, Sl, Sh
+    Sl = s_fmax(Sl, rl)
+    Sh = s_fmin(Sh, rh)
+    if not Sl <= Sh:
+        return -1, Sl, Sh
+    return 1, Sl, Sh
+
+
+@nb.njit(cache=True, error_model="numpy")
 def _sos_backward(Sl, Sh, tl, th, ql, qh, c):
     """The projection of sum_c t_c^2 in S onto t_c (:func:`_sos_project`)."""
     c1 = (c + 1) % 3
@@ -1392,13 +1407,11 @@ def _c_spheres(lo, hi, n, sp_pt, cl, ch, rl, rh):
         p = sp_pt[k]
         for c in range(3):
             tl[c], th[c] = s_sub(lo[n, 3 * p + c], hi[n, 3 * p + c], cl[k, c], ch[k, c])
-        Sl, Sh = _sos_forward(tl, th, ql, qh)
-        if Sl >= rl[k] and Sh <= rh[k]:
-            continue
-        Sl = s_fmax(Sl, rl[k])
-        Sh = s_fmin(Sh, rh[k])
-        if not Sl <= Sh:
+        state, Sl, Sh = _sos_narrow(tl, th, ql, qh, rl[k], rh[k])
+        if state < 0:
             return False
+        if state == 0:
+            continue
         for c in range(3):
             vl, vh = _sos_backward(Sl, Sh, tl, th, ql, qh, c)
             vl, vh = s_add(vl, vh, cl[k, c], ch[k, c])
@@ -1419,13 +1432,11 @@ def _c_distances(lo, hi, n, ds_p, ds_q, rl, rh):
         q = ds_q[k]
         for c in range(3):
             tl[c], th[c] = s_sub(lo[n, 3 * p + c], hi[n, 3 * p + c], lo[n, 3 * q + c], hi[n, 3 * q + c])
-        Sl, Sh = _sos_forward(tl, th, ql, qh)
-        if Sl >= rl[k] and Sh <= rh[k]:
-            continue
-        Sl = s_fmax(Sl, rl[k])
-        Sh = s_fmin(Sh, rh[k])
-        if not Sl <= Sh:
+        state, Sl, Sh = _sos_narrow(tl, th, ql, qh, rl[k], rh[k])
+        if state < 0:
             return False
+        if state == 0:
+            continue
         for c in range(3):
             vl, vh = _sos_backward(Sl, Sh, tl, th, ql, qh, c)
             xl, xh = s_add(vl, vh, lo[n, 3 * q + c], hi[n, 3 * q + c])
@@ -1716,6 +1727,24 @@ def _c_statics_gauss(lo, hi, n, bcols, gcol, lam0, world6, weight, kcm, k0m, hcm
 
 
 @nb.njit(cache=True, error_model="numpy")
+def _c_statics(lo, hi, n, rows, gauss, do_gauss):
+    """The statics contractors on box n: the rows, then (``do_gauss``) the generalized-inverse form."""
+    ok = _c_statics_rows(lo, hi, n, *rows)
+    if ok and do_gauss:
+        ok = _c_statics_gauss(lo, hi, n, *gauss)
+    return ok
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _nonempty(lo, hi, n):
+    """Box n has lo <= hi in every column (False also for a NaN bound)."""
+    for c in range(lo.shape[1]):
+        if not lo[n, c] <= hi[n, c]:
+            return False
+    return True
+
+
+@nb.njit(cache=True, error_model="numpy")
 def _contract_kernel(lo, hi, core, scale, max_sweeps, gain, rel, n_pt, use_n, sph, dst, chir, rows, gauss, do_gauss,
                      order):
     """:func:`contract` box by box; returns alive (N,) bool (a dead box also gets lo[:, 0] = inf).  order 0: the
@@ -1739,14 +1768,8 @@ def _contract_kernel(lo, hi, core, scale, max_sweeps, gain, rel, n_pt, use_n, sp
             ok = ok and _c_relations(lo, hi, n, *rel, n_pt)
             ok = ok and _c_chirality(lo, hi, n, *chir)
             if order == 0:
-                ok = ok and _c_statics_rows(lo, hi, n, *rows)
-                if ok and do_gauss:
-                    ok = _c_statics_gauss(lo, hi, n, *gauss)
-            if ok:
-                for c in range(lo.shape[1]):
-                    if not lo[n, c] <= hi[n, c]:
-                        ok = False
-                        break
+                ok = ok and _c_statics(lo, hi, n, rows, gauss, do_gauss)
+            ok = ok and _nonempty(lo, hi, n)
             if not ok:
                 break
             w1 = 0.0
@@ -1755,14 +1778,7 @@ def _contract_kernel(lo, hi, core, scale, max_sweeps, gain, rel, n_pt, use_n, sp
             if not (w1 < (1.0 - gain) * w0 or (not np.isfinite(w0) and np.isfinite(w1))):
                 break
         if ok and order == 1:
-            ok = _c_statics_rows(lo, hi, n, *rows)
-            if ok and do_gauss:
-                ok = _c_statics_gauss(lo, hi, n, *gauss)
-            if ok:
-                for c in range(lo.shape[1]):
-                    if not lo[n, c] <= hi[n, c]:
-                        ok = False
-                        break
+            ok = _c_statics(lo, hi, n, rows, gauss, do_gauss) and _nonempty(lo, hi, n)
         if not ok:
             alive[n] = False
             lo[n, 0] = np.inf
