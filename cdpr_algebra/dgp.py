@@ -85,7 +85,12 @@ def _generic(m: int):
     if m not in _GENERIC:
         from .homotopy.monodromy import load_instance
 
-        p, X, _ = load_instance(generic_path(m), fast_family(m))  # hash of the sympy family, residual by numpy
+        # the residual by the hand-written evaluator; the hash of the sympy family (slow to build: ~0.25 s per m,
+        # every process) is checked by tests/test_dgp.py::test_stored_generic_sets
+        p, X, _ = load_instance(generic_path(m))
+        F = fast_family(m).evaluate(X, p)
+        if X.shape[1] != 12 + m or not np.max(np.abs(F)) <= 1e-8 * (1 + np.max(np.abs(X))):
+            raise ValueError(f"{generic_path(m)}: the stored solutions do not solve the {m}-cable taut equations")
         _GENERIC[m] = (p, X)
     return _GENERIC[m]
 
@@ -170,13 +175,22 @@ class FastTautSystem:
     sympy family's."""
 
     def __init__(self, m: int):
-        self.family = taut_family(m)
+        self._family = None
         self.mm = m
-        self.n = self.family.n
-        self.m = self.family.m
-        self.neq = self.family.neq
+        self.n = 12 + m  # p, u, v, w, lam
+        self.m = 7 * m + 6  # A_i, rho_i^2, b'_i, g', Q d
+        self.neq = 12 + m
+
+    @property
+    def family(self):
+        """The sympy family, built on first use (building it takes ~0.25 s; the tracking does not need it)."""
+        if self._family is None:
+            self._family = taut_family(self.mm)
+        return self._family
 
     def __getattr__(self, name):
+        if name.startswith("__") or name == "_family":
+            raise AttributeError(name)
         return getattr(self.family, name)
 
     def compiled_kernels(self):

@@ -17,6 +17,26 @@ TABLES = json.loads((ROOT / "tests" / "data" / "seed000_tables.json").read_text(
 needs_m3 = pytest.mark.skipif(not {2, 3} <= set(available_m()), reason="generic sets for m = 2, 3 not stored")
 
 
+@pytest.mark.parametrize("m, count", [(2, 24), (3, 156), (4, 216), (5, 140), (6, 40)])
+def test_stored_generic_sets(m, count):
+    """The stored generic solution sets belong to the sympy family of dgp_equations (hash, residual by its
+    evaluator), have the published generic counts, distinct points, and the fast family agrees in size."""
+    from cdpr_algebra.dgp import FastTautSystem, generic_path
+    from cdpr_algebra.dgp_equations import taut_family
+    from cdpr_algebra.homotopy.monodromy import load_instance
+
+    if not generic_path(m).exists():
+        pytest.skip(f"no stored generic set for m = {m}")
+    fam = taut_family(m)
+    p, X, _ = load_instance(generic_path(m), fam)
+    assert X.shape == (count, fam.n)
+    d = np.abs(X[:, None, :] - X[None, :, :]).max(axis=2) + np.eye(count)
+    assert d.min() > 1e-6
+    fast = FastTautSystem(m)
+    assert (fast.n, fast.m, fast.neq) == (fam.n, fam.m, fam.neq) and fast._family is None
+    assert np.allclose(fast.evaluate(X, p), fam.evaluate(X, p), atol=1e-10)
+
+
 @pytest.fixture(scope="module")
 def test1():
     robot = load_robot(ROOT / "examples" / "seed000_test1.toml")

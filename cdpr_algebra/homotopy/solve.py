@@ -141,8 +141,7 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
     asked = options
     options = replace(options, retry_mpmath=False)  # double-precision retries first, arbitrary precision last
     paths = _track_segments(system, homs, X, options, seed)
-    if retries:
-        proj, chart = projectivize(system)
+    proj = chart = None  # built on the first retry (a system may be slow to homogenize)
     for round_ in range(retries):
         redo = [i for i in _suspects(paths, options.duplicate_tol) if ignore is None or not ignore(paths[i])]
         if round_ >= 1:  # a singular endpoint reached again in projective coordinates is an answer, not a failure
@@ -152,6 +151,8 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
         # re-track in projective coordinates (large-norm solutions become ordinary points of a random chart)
         # along the SAME parameter path: paths of one homotopy end on distinct solutions, but a path re-tracked
         # along another route (a new detour) may legitimately end on a solution another path already reached
+        if proj is None:
+            proj, chart = projectivize(system)
         phoms = [ParameterHomotopy(proj, h.p1, h.p0, gamma=h.gamma) for h in homs]
         tight = replace(options, tracker=options.tracker.tightened(10.0 ** (round_ + 1)))
         again = _track_segments(proj, phoms, to_chart(X[redo], chart), tight, seed + 1 + round_)
