@@ -5,7 +5,6 @@ Forced here: every double-precision attempt (affine and projective) of one path 
 Test 1 reports a failed step; the subproblem still reports every solution of an ordinary run, and no failed path.
 """
 
-import importlib
 from pathlib import Path
 
 import numpy as np
@@ -47,8 +46,7 @@ def test_failed_path_is_tracked_in_arbitrary_precision(monkeypatch):
         return real_mp(*a, **k)
 
     monkeypatch.setattr(eg, "track_segment", failing)
-    solve_mod = importlib.import_module("cdpr_algebra.homotopy.solve")  # the package exports a function "solve"
-    monkeypatch.setattr(solve_mod, "mp_track", counting_mp)
+    monkeypatch.setattr(eg, "mp_track", counting_mp)  # the arbitrary-precision tracker behind eg.mp_path
     sub, sols = solve_taut_set(robot, rho, cables, certify=False)
     assert calls["mp"] == 1  # the one path, once, in the re-run
     assert sub.failed_paths == 0 and sub.finite == sub0.finite and sub.real == sub0.real

@@ -32,7 +32,7 @@ from .results import (AT_INFINITY, DIVERGED, FAILURES, SINGULAR, STEP_TOO_SMALL,
                       PathResult)
 from .tracker import TrackerOptions, _norm, _solve, track_segment
 
-__all__ = ["EndgameOptions", "SolveOptions", "run_pipeline", "refine", "cauchy_endgame", "mp_track"]
+__all__ = ["EndgameOptions", "SolveOptions", "run_pipeline", "refine", "cauchy_endgame", "mp_track", "mp_path"]
 
 
 @dataclass(frozen=True)
@@ -309,6 +309,7 @@ def mp_track(homotopy, x0, t_a, t_b, dps: int = 30, options: TrackerOptions | No
         dt = tb - ta
         s, h = mpmath.mpf(0), mpmath.mpf(o.initial_step)
         rejected = False
+        safety = o.step_safety
         tol_p = mpmath.mpf(o.predictor_tol)
         tol_c = mpmath.mpf(10) ** (-(dps - 8))
         steps = 0
@@ -342,7 +343,6 @@ def mp_track(homotopy, x0, t_a, t_b, dps: int = 30, options: TrackerOptions | No
                 okk = d[0] <= tol_p and d[2] <= max(tol_c, d[1] * o.max_contraction) and d[1] <= o.max_contraction * d[0] + tol_c
             except (ZeroDivisionError, ValueError):
                 okk, d = False, [mpmath.inf]
-            safety = o.step_safety
             if okk:
                 x, s = xc, s + hh
                 ratio = safety * (tol_p / max(d[0], mpmath.mpf(10) ** -300)) ** 0.2
@@ -493,6 +493,18 @@ def duplicate_groups(points: np.ndarray, tol: float) -> list:
     return [g for g in groups.values() if len(g) > 1]
 
 
+def mp_path(homotopy, x0, index, opts: SolveOptions, tr: TrackerOptions, steps: int = 0):
+    """Path ``index`` from x0 tracked in arbitrary precision (:func:`mp_track`, ``opts.mp_dps`` digits) up to the
+    endgame zone, then phases 2-3 in double precision: a PathResult with ``retried="mpmath"`` (``steps`` added to
+    its count), or None when the arbitrary-precision tracking fails too."""
+    xm, st, ns = mp_track(homotopy, x0, 1.0, opts.endgame.endgame_start, opts.mp_dps, tr)
+    if st != SUCCESS:
+        return None
+    xo, so, wo, ao, to, sto = _finish(homotopy, xm[None, :], opts, tr)
+    return _records(homotopy, np.array([index]), xo, so, wo, ao, to, sto + ns + steps,
+                    np.array(["mpmath"], dtype=object))[0]
+
+
 def run_pipeline(homotopy, X0, opts: SolveOptions):
     """All phases for all start points; returns a list of :class:`PathResult` in start order."""
     N = len(X0)
@@ -516,13 +528,9 @@ def run_pipeline(homotopy, X0, opts: SolveOptions):
                 if groups and opts.retry_mpmath and hasattr(homotopy, "mp_evaluate_all"):
                     redo = sorted({succ[i].index for g in groups for i in g[1:]})[: opts.max_mpmath_paths]
                     for i in redo:
-                        xm, st, ns = mp_track(homotopy, X0[i], 1.0, opts.endgame.endgame_start, opts.mp_dps, tight)
-                        if st != SUCCESS:
-                            continue
-                        xo, so, wo, ao, to, sto = _finish(homotopy, xm[None, :], opts, tight)
-                        rec = _records(homotopy, np.array([i]), xo, so, wo, ao, to, sto + ns,
-                                       np.array(["mpmath"], dtype=object))[0]
-                        paths[i] = rec
+                        rec = mp_path(homotopy, X0[i], i, opts, tight)
+                        if rec is not None:
+                            paths[i] = rec
     # distinct paths of a homotopy that is regular for t in (0, 1] cannot meet at a nonsingular
     # point (implicit function theorem): an endpoint shared by several paths is singular
     fin = [p for p in paths if p.status in (SUCCESS, SINGULAR)]

@@ -19,7 +19,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .endgame import SolveOptions, _finish, _records, duplicate_groups, mp_track
+from .endgame import SolveOptions, duplicate_groups, mp_path, mp_track
 from .projective import from_chart, projectivize, to_chart
 from .results import AT_INFINITY, FAILURES, SINGULAR, SUCCESS, Solution, SolveResult, TrackResult
 from .homotopies import ParameterHomotopy
@@ -93,17 +93,15 @@ def _track_segments(system, homs, X, options, seed):
 
 def _mp_retrack(homs, x0, index, options):
     """Path ``index`` from x0 through the parameter segments ``homs`` in arbitrary precision (mpmath, ``mp_dps``
-    digits) up to the endgame zone of the last one, then the endgame in double precision; a PathResult with
-    ``retried="mpmath"``, or None when the arbitrary-precision tracking fails too."""
-    te = options.endgame.endgame_start
+    digits): the intermediate segments to t = 0, the last one by :func:`.endgame.mp_path` (endgame in double
+    precision); a PathResult with ``retried="mpmath"``, or None when the arbitrary-precision tracking fails too."""
     x, steps = x0, 0
-    for k, hom in enumerate(homs):
-        x, status, ns = mp_track(hom, x, 1.0, te if k == len(homs) - 1 else 0.0, options.mp_dps, options.tracker)
+    for hom in homs[:-1]:
+        x, status, ns = mp_track(hom, x, 1.0, 0.0, options.mp_dps, options.tracker)
         steps += ns
         if status != SUCCESS:
             return None
-    xo, so, wo, ao, to, sto = _finish(homs[-1], x[None, :], options, options.tracker)
-    return _records(homs[-1], np.array([index]), xo, so, wo, ao, to, sto + steps, np.array(["mpmath"], dtype=object))[0]
+    return mp_path(homs[-1], x, index, options, options.tracker, steps)
 
 
 def _suspects(paths, tol):
