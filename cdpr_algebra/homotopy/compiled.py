@@ -175,12 +175,26 @@ def _lin(ok, apply, J, A, piv, b, out):
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _stage(fjt, factor, apply, x, t, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k):
-    """k = dx/ds = -H_x^{-1} H_t dt at (x, t), factoring H_x in (J, A, piv); True when it is regular."""
+def _tangent_rhs(fjt, x, t, dt, p1, p0, g, p, dp, F, J, Ht, rhs):
+    """rhs = -H_t dt at (x, t) (fjt also writes F and H_x into F and J)."""
     _params(p1, p0, g, t, p, dp)
     fjt(x, p, dp, F, J, Ht)
     for i in range(rhs.shape[0]):
         rhs[i] = -Ht[i] * dt
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _newton_rhs(fj, x, p, F, J, rhs):
+    """rhs = -F(x) at the parameters p (fj also writes H_x into J)."""
+    fj(x, p, F, J)
+    for i in range(rhs.shape[0]):
+        rhs[i] = -F[i]
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _stage(fjt, factor, apply, x, t, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k):
+    """k = dx/ds = -H_x^{-1} H_t dt at (x, t), factoring H_x in (J, A, piv); True when it is regular."""
+    _tangent_rhs(fjt, x, t, dt, p1, p0, g, p, dp, F, J, Ht, rhs)
     ok = factor(J, A, piv)
     _lin(ok, apply, J, A, piv, rhs, k)
     return ok
@@ -245,10 +259,7 @@ def track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, S
             ha = min(h, 1.0 - s)
             if not have_k1:
                 if have_lu:
-                    _params(p1, p0, g, ta + s * dt, p, dp)
-                    fjt(x, p, dp, F, Js, Ht)
-                    for c in range(n):
-                        rhs[c] = -Ht[c] * dt
+                    _tangent_rhs(fjt, x, ta + s * dt, dt, p1, p0, g, p, dp, F, Js, Ht, rhs)
                     apply(Jc, Ac, pivc, rhs, k1)
                 else:
                     have_lu = _stage(fjt, factor, apply, x, ta + s * dt, dt, p1, p0, g, p, dp, F, Jc, Ht, Ac, pivc,
@@ -268,16 +279,12 @@ def track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, S
             sn = s + ha
             _params(p1, p0, g, ta + sn * dt, p, dp)
             # two Newton corrections at t(s + h): a Newton step, then a chord step with the same factors
-            fj(xt, p, F, Jn)
-            for c in range(n):
-                rhs[c] = -F[c]
+            _newton_rhs(fj, xt, p, F, Jn, rhs)
             okn = factor(Jn, An, pivn)
             _lin(okn, apply, Jn, An, pivn, rhs, d1)
             for c in range(n):
                 xt[c] += d1[c]
-            fj(xt, p, F, Js)
-            for c in range(n):
-                rhs[c] = -F[c]
+            _newton_rhs(fj, xt, p, F, Js, rhs)
             _lin(okn, apply, Jn, An, pivn, rhs, d2)
             for c in range(n):
                 x2[c] = xt[c] + d2[c]
@@ -289,9 +296,7 @@ def track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, S
             ok = finite and e1 <= ptol and contracting and e2 <= ctol
             if finite and not ok and e1 <= ptol and e2 <= noise_tol:
                 # round-off floor: a third update that does not move away either
-                fj(x2, p, F, Js)
-                for c in range(n):
-                    rhs[c] = -F[c]
+                _newton_rhs(fj, x2, p, F, Js, rhs)
                 _lin(okn, apply, Jn, An, pivn, rhs, d3)
                 e3 = _norm(d3) / scale
                 if np.isfinite(e3) and e3 <= 2.0 * e2 and e3 <= noise_tol:
