@@ -88,8 +88,8 @@ def _generic(m: int):
         # the residual by the hand-written evaluator; the hash of the sympy family (slow to build: ~0.25 s per m,
         # every process) is checked by tests/test_dgp.py::test_stored_generic_sets
         p, X, _ = load_instance(generic_path(m))
-        F = fast_family(m).evaluate(X, p)
-        if X.shape[1] != 12 + m or not np.max(np.abs(F)) <= 1e-8 * (1 + np.max(np.abs(X))):
+        fam = fast_family(m)
+        if X.shape[1] != fam.n or not np.max(np.abs(fam.evaluate(X, p))) <= 1e-8 * (1 + np.max(np.abs(X))):
             raise ValueError(f"{generic_path(m)}: the stored solutions do not solve the {m}-cable taut equations")
         _GENERIC[m] = (p, X)
     return _GENERIC[m]
