@@ -3,11 +3,15 @@
     cdpr crosscheck ROBOT [--lengths L1 .. Ln] [--taut C1 .. Cm] [--max-m M] [--json]
 
 Without ``--taut``: every set of m = 1 .. min(n, 6, M) taut cables; with it, that one set (cable numbers from 1).
-Prints a table (one row per subproblem: both admissible counts, the interval solver's undecided boxes, agreement,
-times) followed by every disagreement with the solutions involved; ``--json`` gives
-:meth:`.crosscheck.CrosscheckResult.to_dict`.  Progress goes to stderr.
+Prints a table (one row per subproblem: both admissible counts, the interval solver's undecided boxes, agree /
+NO / not compared, times) followed by every disagreement with the solutions involved, every subproblem not
+compared with the reason, and a summary line counting agree / disagree / not compared; ``--json`` gives
+:meth:`.crosscheck.CrosscheckResult.to_dict` (per subproblem ``"agree": true | false | null`` and ``"compared"``,
+the reason).  Progress goes to stderr.
 
-Exit status: 0 when every subproblem agrees, 1 when some disagree (or stay undecided), 2 on bad input.
+Exit status (:func:`.crosscheck.exit_status`): 0 when every subproblem was compared and agrees; 1 when some
+subproblem disagrees; 3 when none disagrees but some subproblem was not compared (a solver skipped it or left it
+incomplete: homotopy failed paths, undecided interval boxes); 2 on bad input.
 """
 
 from __future__ import annotations
@@ -33,7 +37,7 @@ def add_parser(subparsers) -> None:
 
 
 def run(args) -> int:
-    from .crosscheck import crosscheck, crosscheck_table
+    from .crosscheck import crosscheck, crosscheck_table, exit_status
     from .robot import load_robot
 
     robot = load_robot(args.robot)
@@ -62,8 +66,9 @@ def run(args) -> int:
 
     def progress(c, done, total):
         h = "-" if c.homotopy is None else c.homotopy
+        what = {True: "agree", False: "DISAGREE", None: c.compared}[c.agree]
         print(f"[{done}/{total}] taut {list(c.taut)}: homotopy {h}, interval {c.interval} ({c.undecided} undecided, "
-              f"{c.interval_boxes} boxes), {'agree' if c.agree else 'DISAGREE'}, "
+              f"{c.interval_boxes} boxes), {what}, "
               f"{c.homotopy_seconds:.2f} s + {c.interval_seconds:.2f} s", file=sys.stderr, flush=True)
 
     result = crosscheck(robot, lengths, sets=sets, max_m=args.max_m, progress=progress)
@@ -72,4 +77,8 @@ def run(args) -> int:
     else:
         print(f"{robot.name}: cross-check homotopy / interval, lengths {', '.join(f'{v:g}' for v in lengths)}")
         print(crosscheck_table(result))
-    return 0 if result.agree else 1
+    code = exit_status(result)
+    if code == 3:
+        print(f"cdpr crosscheck: incomplete: {len(result.not_compared)} subproblem(s) not compared: "
+              + ", ".join(str(list(c.taut)) for c in result.not_compared), file=sys.stderr)
+    return code

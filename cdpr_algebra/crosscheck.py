@@ -5,17 +5,39 @@ For each set of taut cables: the homotopy's admissible count (real, tensions >= 
 interval solver's count of proven admissible solutions, its undecided boxes, and every disagreement with the
 solutions involved.  Solutions are matched by pose: for m >= 2 the platform origin within ``MATCH_TOL`` robot sizes
 and the rotation within ``MATCH_TOL``; for m = 1 (the platform turns freely about the cable, each solver reports some
-angle) the anchor B_i and the centre of mass G, which do not depend on that angle.  A subproblem agrees when the
-counts are equal, every solution is matched one to one and the interval search is complete (no undecided box).
+angle) the anchor B_i and the centre of mass G, which do not depend on that angle.
+
+**Outcome of a subproblem** (``agree``, with the reason in ``compared``; issue 15 item 5: agreement is claimed only
+where both sides stand behind their answer):
+
+* ``True`` (agree): both sides are complete -- the homotopy ran with no failed path, or it pruned the subproblem
+  by a test that is a proof (below); the interval search ran and left no undecided box -- and the solutions match
+  one to one.
+* ``False`` (disagree): a difference that completeness makes definite -- a homotopy solution that is not among the
+  proven solutions of a complete interval search, or a proven interval solution that a complete homotopy does not
+  have.
+* ``None`` (not compared): everything else -- either side skipped the subproblem (the interval solver's skip
+  reasons, e.g. non-isolated equilibria; the homotopy's missing generic set; a homotopy pruning that interval
+  arithmetic could not confirm), or left it incomplete (homotopy failed paths, or a homotopy subproblem flagged
+  ``complete = False``; undecided interval boxes) without a definite difference.  It is never counted as agreement.
+
+**Pruning as a proof.**  The homotopy DGP skips a taut set when two cables cannot reach each other
+(|A_i A_j| > rho_i + rho_j + |b_i' b_j'|: B_i lies within rho_i of A_i, B_j within rho_j of A_j, and |B_i B_j| =
+|b_i' b_j'|, so the triangle inequality rules out every pose) or cannot both be taut (|rho_i - rho_j| > |A_i A_j| +
+|b_i' b_j'|, the same triangle inequality with both cables at their lengths).  Each is a statement that no pose
+satisfies the geometric constraints, hence no equilibrium exists.  :func:`pruning_proof` re-checks the inequality in
+outward-rounded ball arithmetic (arb) on the robot's numbers; only then is the homotopy's 0 a proven, complete
+answer compared with the interval search's (which still runs: its answer must be complete and empty to agree).
 
 Boundary cases follow the homotopy's deduplication rule (:mod:`.dgp`): a solution with a zero tension belongs to
 the smaller taut set; the interval solver reports such a proven solution as undecided (its tension enclosure
-contains 0), so it shows up as a disagreement to look at, never silently.
+contains 0), so that subproblem is "not compared" with the undecided box listed, never silently agreed.
 """
 
 from __future__ import annotations
 
 import inspect
+import itertools
 import time
 from dataclasses import dataclass
 
@@ -26,7 +48,7 @@ from .interval_bp import BPOptions, solve_taut_set_interval
 from .jsonable import jsonable
 
 __all__ = ["SubproblemComparison", "CrosscheckResult", "compare_taut_set", "crosscheck", "crosscheck_table",
-           "MATCH_TOL"]
+           "pruning_proof", "exit_status", "MATCH_TOL"]
 
 MATCH_TOL = 1e-6
 
@@ -37,7 +59,7 @@ class SubproblemComparison:
     homotopy: int | None  # admissible count (None: the homotopy could not run this subproblem)
     interval: int  # proven admissible solutions
     undecided: int  # undecided boxes of the interval search
-    agree: bool
+    agree: bool | None  # True: agree, False: disagree, None: not compared (see ``compared``)
     homotopy_only: tuple  # DGPSolution found by the homotopy only
     interval_only: tuple  # IntervalSolution found by the interval search only
     undecided_boxes: tuple  # UndecidedBox
@@ -46,16 +68,23 @@ class SubproblemComparison:
     interval_boxes: int
     homotopy_skipped: str | None = None
     interval_skipped: str | None = None
+    compared: str = ""  # why agree is what it is (for None: why the subproblem was not compared)
+    homotopy_failed_paths: int = 0
+
+    @property
+    def status(self) -> str:
+        """'agree', 'disagree' or 'not compared'."""
+        return {True: "agree", False: "disagree", None: "not compared"}[self.agree]
 
     def to_dict(self) -> dict:
         return {"taut": list(self.taut), "homotopy": self.homotopy, "interval": self.interval,
-                "undecided": self.undecided, "agree": self.agree,
+                "undecided": self.undecided, "agree": self.agree, "compared": self.compared,
                 "homotopy_only": [s.to_dict() for s in self.homotopy_only],
                 "interval_only": [s.to_dict() for s in self.interval_only],
                 "undecided_boxes": [u.to_dict() for u in self.undecided_boxes],
                 "homotopy_seconds": self.homotopy_seconds, "interval_seconds": self.interval_seconds,
                 "interval_boxes": self.interval_boxes, "homotopy_skipped": self.homotopy_skipped,
-                "interval_skipped": self.interval_skipped}
+                "homotopy_failed_paths": self.homotopy_failed_paths, "interval_skipped": self.interval_skipped}
 
 
 @dataclass(frozen=True)
@@ -67,18 +96,65 @@ class CrosscheckResult:
 
     @property
     def agree(self) -> bool:
-        return all(c.agree for c in self.comparisons)
+        """Every subproblem compared and in agreement (a subproblem not compared is not agreement)."""
+        return all(c.agree is True for c in self.comparisons)
 
     @property
     def disagreements(self) -> tuple:
-        return tuple(c for c in self.comparisons if not c.agree)
+        return tuple(c for c in self.comparisons if c.agree is False)
+
+    @property
+    def not_compared(self) -> tuple:
+        return tuple(c for c in self.comparisons if c.agree is None)
+
+    @property
+    def agreements(self) -> tuple:
+        return tuple(c for c in self.comparisons if c.agree is True)
 
     def to_dict(self) -> dict:
-        return {"robot": self.robot, "lengths": jsonable(self.lengths), "agree": self.agree,
+        return {"robot": self.robot, "lengths": jsonable(self.lengths),
+                "agree": True if self.agree else (False if self.disagreements else None),
+                "summary": {"subproblems": len(self.comparisons), "agree": len(self.agreements),
+                            "disagree": len(self.disagreements), "not_compared": len(self.not_compared)},
+                "exit_status": exit_status(self),
                 "subproblems": [c.to_dict() for c in self.comparisons], "seconds": self.seconds,
                 "homotopy_admissible": sum(c.homotopy or 0 for c in self.comparisons),
                 "interval_admissible": sum(c.interval for c in self.comparisons),
                 "undecided": sum(c.undecided for c in self.comparisons)}
+
+
+def exit_status(result: CrosscheckResult) -> int:
+    """0: every subproblem agrees; 1: some subproblem disagrees; 3: nothing disagrees but some subproblem was not
+    compared (skipped or left incomplete by a solver)."""
+    if result.disagreements:
+        return 1
+    return 3 if result.not_compared else 0
+
+
+def pruning_proof(robot, rho, cables) -> str | None:
+    """The pruning test of :func:`.dgp.prune` for the 0-based taut set ``cables``, re-checked in ball arithmetic
+    (arb, outward rounded; the robot's doubles taken as exact): the reason when one of its inequalities is proven
+    (no pose, hence no equilibrium), None otherwise (see the module docstring)."""
+    from flint import arb
+
+    A = [[arb(float(v)) for v in a] for a in robot.base]
+    b = [[arb(float(v)) for v in p] for p in robot.platform]
+    r = [arb(float(v)) for v in rho]
+
+    def dist(P, Q):
+        return sum(((P[k] - Q[k]) ** 2 for k in range(3)), arb(0)).sqrt()
+
+    n = robot.n
+    for i in range(n):
+        for j in range(i + 1, n):
+            if dist(A[i], A[j]) > r[i] + r[j] + dist(b[i], b[j]):
+                return (f"cables {i + 1} and {j + 1} cannot reach each other's anchor (|A{i + 1}A{j + 1}| > "
+                        f"rho{i + 1} + rho{j + 1} + |b{i + 1}'b{j + 1}'|, proven in interval arithmetic)")
+    for i, j in itertools.combinations(sorted(cables), 2):
+        if abs(r[i] - r[j]) > dist(A[i], A[j]) + dist(b[i], b[j]):
+            return (f"cables {i + 1} and {j + 1} cannot both be taut (|rho{i + 1} - rho{j + 1}| > |A{i + 1}A{j + 1}| + "
+                    f"|b{i + 1}'b{j + 1}'|, proven in interval arithmetic)")
+    return None
 
 
 def _key(robot, taut, position, rotation):
@@ -115,6 +191,36 @@ def _homotopy(robot, rho, cables, seed):
     return solve_taut_set(robot, rho, cables, **kwargs)
 
 
+def _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only):
+    """(agree, compared) of one subproblem (see the module docstring); ``hflag``: the homotopy subproblem's own
+    ``complete`` flag when it has one (None otherwise)."""
+    h_complete = hcount is not None and ((hskip is None and hfailed == 0 and hflag is not False) or pruned is not None)
+    i_complete = isub.skipped is None and not isub.undecided
+    if i_complete and h_only:
+        return False, (f"{len(h_only)} homotopy solution(s) not among the proven solutions of the complete interval "
+                       f"search")
+    if h_complete and i_only:
+        return False, (f"{len(i_only)} proven interval solution(s) missing from the complete homotopy solve")
+    if h_complete and i_complete:
+        if pruned is not None:
+            return True, f"homotopy pruned: {pruned}; interval search complete, no solution"
+        return True, "both complete, solutions matched one to one"
+    why = []
+    if hcount is None:
+        why.append(f"homotopy did not run ({hskip})")
+    elif hskip is not None and pruned is None:
+        why.append(f"homotopy skipped ({hskip}), not confirmed in interval arithmetic")
+    elif hfailed:
+        why.append(f"homotopy incomplete: {hfailed} failed path(s)")
+    elif hflag is False:
+        why.append("homotopy incomplete: its path outcomes do not account for the generic solution count")
+    if isub.skipped is not None:
+        why.append(f"interval search skipped ({isub.skipped})")
+    elif isub.undecided:
+        why.append(f"interval search incomplete: {len(isub.undecided)} undecided box(es)")
+    return None, "not compared: " + "; ".join(why)
+
+
 def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed: int = 0,
                      interval_result=None) -> SubproblemComparison:
     """Both solvers on the 0-based taut set ``cables`` (rho: all n lengths) and their comparison
@@ -127,13 +233,19 @@ def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed:
     th = time.perf_counter() - t0
     hskip = hsub.skipped
     hcount = len(hsols)
+    hfailed = int(getattr(hsub, "failed_paths", 0) or 0)
+    hflag = getattr(hsub, "complete", None)
+    pruned = None
     if hskip is not None and hskip.startswith("no stored generic solution set"):
         hcount = None  # the homotopy cannot say
+    elif hskip is not None:
+        pruned = pruning_proof(robot, rho, cables)
     isub = interval_result if interval_result is not None else solve_taut_set_interval(robot, rho, cables, options)
     h_only, i_only = _match(robot, taut1, list(hsols), list(isub.solutions))
-    agree = (hcount is not None and hcount == isub.admissible and not h_only and not i_only and not isub.undecided)
+    agree, compared = _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only)
     return SubproblemComparison(taut1, hcount, isub.admissible, len(isub.undecided), agree, h_only, i_only,
-                                tuple(isub.undecided), th, isub.seconds, isub.boxes, hskip, isub.skipped)
+                                tuple(isub.undecided), th, isub.seconds, isub.boxes, hskip, isub.skipped, compared,
+                                hfailed)
 
 
 def crosscheck(robot, lengths=None, sets=None, max_m: int = 6, options: BPOptions | None = None, seed: int = 0,
@@ -150,21 +262,42 @@ def _fmt_solution(tag, s) -> str:
             f"({', '.join(f'{v:+.6f}' for v in s.angles)}), tau = ({', '.join(f'{v:.6f}' for v in s.tensions)})")
 
 
+def _cell(c) -> str:
+    return {True: "yes", False: "NO", None: "not compared"}[c.agree]
+
+
+def summary_line(result: CrosscheckResult) -> str:
+    """Counts of agree / disagree / not compared, then the admissible counts of both sides."""
+    nh = sum(c.homotopy or 0 for c in result.comparisons)
+    ni = sum(c.interval for c in result.comparisons)
+    return (f"{len(result.comparisons)} subproblems: {len(result.agreements)} agree, {len(result.disagreements)} "
+            f"disagree, {len(result.not_compared)} not compared; homotopy {nh} admissible, interval {ni} admissible "
+            f"(proven), {sum(c.undecided for c in result.comparisons)} undecided boxes; {result.seconds:.2f} s")
+
+
 def crosscheck_table(result: CrosscheckResult) -> str:
-    """One row per subproblem, then every disagreement with its solutions and undecided boxes."""
+    """One row per subproblem, then every disagreement with its solutions, every subproblem not compared with the
+    reason (and its undecided boxes), and the summary line."""
     from .tables import format_table
 
     headers = ["taut", "homotopy", "interval", "undecided", "agree", "t_homotopy", "t_interval", "boxes"]
     rows = []
     for c in result.comparisons:
         rows.append([" ".join(str(t) for t in c.taut), "-" if c.homotopy is None else str(c.homotopy), str(c.interval),
-                     str(c.undecided), "yes" if c.agree else "NO", f"{c.homotopy_seconds:.2f}s",
+                     str(c.undecided), _cell(c), f"{c.homotopy_seconds:.2f}s",
                      f"{c.interval_seconds:.2f}s", str(c.interval_boxes)])
     lines = [format_table(headers, rows)]
-    for c in result.disagreements:
-        lines.append(f"taut {list(c.taut)}: homotopy {c.homotopy if c.homotopy is not None else '-'} "
-                     f"({c.homotopy_skipped or 'ran'}), interval {c.interval} ({c.interval_skipped or 'ran'}), "
-                     f"{c.undecided} undecided")
+    for c in result.comparisons:
+        if c.agree is True:
+            continue
+        what = "DISAGREE" if c.agree is False else "not compared"
+        lines.append(f"taut {list(c.taut)}: {what}: homotopy {c.homotopy if c.homotopy is not None else '-'} "
+                     f"({c.homotopy_skipped or 'ran'}"
+                     f"{f', {c.homotopy_failed_paths} failed paths' if c.homotopy_failed_paths else ''}), "
+                     f"interval {c.interval} ({c.interval_skipped or 'ran'}), {c.undecided} undecided"
+                     + ("" if c.agree is None else f"; {c.compared}"))
+        if c.agree is None:
+            lines.append(f"    {c.compared}")
         for s in c.homotopy_only:
             lines.append(_fmt_solution("homotopy only", s))
         for s in c.interval_only:
@@ -174,10 +307,5 @@ def crosscheck_table(result: CrosscheckResult) -> str:
             lines.append(f"    undecided: {u.reason}{pos}")
         if len(c.undecided_boxes) > 10:
             lines.append(f"    ... {len(c.undecided_boxes) - 10} more undecided boxes (see --json)")
-    nh = sum(c.homotopy or 0 for c in result.comparisons)
-    ni = sum(c.interval for c in result.comparisons)
-    nd = len(result.disagreements)
-    lines.append(f"{len(result.comparisons)} subproblems: homotopy {nh} admissible, interval {ni} admissible "
-                 f"(proven), {sum(c.undecided for c in result.comparisons)} undecided boxes; "
-                 f"{'all agree' if nd == 0 else f'{nd} disagree'}; {result.seconds:.2f} s")
+    lines.append(summary_line(result))
     return "\n".join(lines)

@@ -317,7 +317,7 @@ def test_crosscheck_agrees_on_every_subproblem_of_test1(test1_m3):
     assert [c.homotopy for c in comps] == [0, 0, 0, 0, 0, 0, 6]
     assert [c.interval for c in comps] == [0, 0, 0, 0, 0, 0, 6]
     table = crosscheck_table(res)
-    assert "all agree" in table and "1 2 3" in table
+    assert "7 agree, 0 disagree, 0 not compared" in table and "1 2 3" in table
     json.dumps(res.to_dict())
 
 
