@@ -396,6 +396,9 @@ def igp_orientation(robot: Robot, rotation, *, exact: bool = False, certify: boo
     exact rationals (see :func:`_rational`) and needs an exact rotation (sympy entries).  A numeric solution is
     Newton-polished and verified by its equilibrium residual; the message says how it was checked.
     ``certify``: attach the interval certificate of :mod:`.certify` to the solution (``certified``, ``certificate``).
+
+    The solutions' ``hessian`` is the floating-point class of H_r (an estimate); the class the certificate proves is
+    ``hessian_proven``, and the tables and JSON show that class or 'undecided' (:class:`.results.IGPSolution`).
     """
     t0 = time.perf_counter()
     if robot.n != 3:

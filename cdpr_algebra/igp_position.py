@@ -733,6 +733,9 @@ def igp_position(robot: Robot, com_position, *, include_complex: bool = True, fo
     ``euler_parameters`` (1, e1, e2, e3) or (0, e1, e2, e3) as found. Real solutions first. With
     ``include_complex=False`` only real solutions are returned (all 24 are still computed).  ``certify``: attach
     the interval certificate of :mod:`.certify` to every real solution (``certified``, ``certificate``).
+
+    The solutions' ``hessian`` is the floating-point class of H_r (an estimate); the class the certificate proves is
+    ``hessian_proven``, and the tables and JSON show that class or 'undecided' (:class:`.results.IGPSolution`).
     """
     t0 = time.perf_counter()
     G = _com_position(com_position)

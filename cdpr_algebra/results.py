@@ -20,6 +20,10 @@ class IGPSolution:
     ``position`` is the platform-frame origin, ``com_position`` is G. For a complex (non-real) solution the
     arrays are complex, ``real`` is False, and ``hessian``/``stable`` are None (definiteness is undefined).
     ``residual`` is the relative residual of force and moment balance at the reported pose.
+
+    ``hessian`` (and ``stable``) is the floating-point class of the reduced Hessian, an estimate; the class the
+    interval certificate proves is ``hessian_proven`` (None when not proven), and ``hessian_label`` is what the
+    tables and the JSON ``"hessian"`` show: the proven class or ``'undecided'``.
     """
 
     position: np.ndarray
@@ -46,7 +50,29 @@ class IGPSolution:
 
     @property
     def stable(self) -> bool | None:
+        """Stable by the floating-point class (an estimate; see :attr:`stable_proven`)."""
         return None if self.hessian is None else self.hessian == ">"
+
+    @property
+    def hessian_proven(self) -> str | None:
+        """The class of H_r proven by the interval certificate ('>', '<' or '<>'), or None."""
+        c = self.certificate
+        if c is None or getattr(c, "hessian", None) != "proven" or not getattr(c, "hessian_class", None):
+            return None
+        return c.hessian_class
+
+    @property
+    def hessian_label(self) -> str | None:
+        """The proven class, 'undecided' for a real solution without one, None for a complex solution."""
+        if not self.real:
+            return None
+        return self.hessian_proven or "undecided"
+
+    @property
+    def stable_proven(self) -> bool | None:
+        """True / False when the certificate proves the class, None when it is undecided."""
+        cls = self.hessian_proven
+        return None if cls is None else cls == ">"
 
     def to_dict(self) -> dict:
         return {
@@ -58,8 +84,10 @@ class IGPSolution:
             "lengths": _jsonable(self.lengths),
             "tensions": _jsonable(self.tensions),
             "admissible": self.admissible,
-            "hessian": self.hessian,
-            "stable": self.stable,
+            "hessian": self.hessian_label,
+            "hessian_float": self.hessian,
+            "stable": self.stable_proven,
+            "stable_float": self.stable,
             "real": self.real,
             "residual": self.residual,
             "certified": self.certified,
@@ -155,7 +183,8 @@ class IGPResult:
             "solutions": [s.to_dict() for s in sols],
             "count": {"total": len(self.solutions), "real": len(self.real_solutions),
                       "admissible": sum(s.admissible for s in self.solutions),
-                      "stable": sum(bool(s.stable) and s.admissible for s in self.solutions)},
+                      "stable": sum(bool(s.stable_proven) and s.admissible for s in self.solutions),
+                      "stable_float": sum(bool(s.stable) and s.admissible for s in self.solutions)},
             "solution_set": None if self.solution_set is None else self.solution_set.to_dict(),
             "seconds": self.seconds,
             "message": self.message,

@@ -33,18 +33,30 @@ def certified_cell(solution) -> str:
     return "boundary" if "boundary" in (c.reason or "") else "no"
 
 
+def hessian_cell(solution) -> str:
+    """The H_r class proven by the interval certificate, or 'undecided (float: X)' with the floating-point estimate
+    X; '-' for a complex solution."""
+    label = getattr(solution, "hessian_label", None)
+    if label is None:
+        return "-"
+    if label == "undecided":
+        return f"undecided (float: {solution.hessian})" if solution.hessian else "undecided"
+    return label
+
+
 def igp_table(result, include_complex: bool = False) -> str:
-    """Seed 004 Tables 1-4 layout: one row per solution, with the interval certificate (certify.py)."""
+    """Seed 004 Tables 1-4 layout: one row per solution, with the interval certificate (certify.py).  The H_r column
+    is the class the certificate proves, or 'undecided' with the floating-point estimate labelled as such."""
     sols = result.solutions if include_complex else result.real_solutions
     lines = []
     if result.problem == "orientation":
         headers = ["#", "G (x, y, z)", "(rho_1, rho_2, rho_3)", "(tau_1, tau_2, tau_3)", "H_r", "admissible", "certified"]
-        rows = [[str(i + 1), _vec(s.com_position, 4), _vec(s.lengths, 2), _vec(s.tensions, 2), s.hessian or "-",
+        rows = [[str(i + 1), _vec(s.com_position, 4), _vec(s.lengths, 2), _vec(s.tensions, 2), hessian_cell(s),
                  "yes" if s.admissible else "no", certified_cell(s)] for i, s in enumerate(sols)]
     else:
         headers = ["#", "(e0, e1, e2, e3)", "(rho_1, rho_2, rho_3)", "(tau_1, tau_2, tau_3)", "H_r", "admissible",
                    "certified"]
-        rows = [[str(i + 1), _vec(s.euler_parameters, 10), _vec(s.lengths, 2), _vec(s.tensions, 2), s.hessian or "-",
+        rows = [[str(i + 1), _vec(s.euler_parameters, 10), _vec(s.lengths, 2), _vec(s.tensions, 2), hessian_cell(s),
                  "yes" if s.admissible else "no", certified_cell(s)] for i, s in enumerate(sols)]
     if rows:
         lines.append(format_table(headers, rows))
@@ -56,9 +68,14 @@ def igp_table(result, include_complex: bool = False) -> str:
             if k != "work_frame":
                 lines.append(f"  {k}: {v}")
     n_real = len(result.real_solutions)
+    n_stable = sum(bool(s.stable_proven) and s.admissible for s in result.solutions)
+    n_float = sum(bool(s.stable) and s.admissible for s in result.solutions)
+    n_undecided = sum(1 for s in result.real_solutions if s.hessian_proven is None)
     summary = (f"{len(result.solutions)} solution(s), {n_real} real, "
                f"{sum(s.admissible for s in result.solutions)} admissible (tensions >= 0), "
-               f"{sum(bool(s.stable) and s.admissible for s in result.solutions)} admissible and stable, "
+               f"{n_stable} admissible and proven stable"
+               + (f" ({n_float} by the floating-point H_r)" if n_float != n_stable else "")
+               + (f", H_r undecided for {n_undecided}" if n_undecided else "") + ", "
                f"{sum(bool(getattr(s, 'certified', None)) for s in result.solutions)} certified; "
                f"{result.seconds * 1e3:.1f} ms")
     if result.message:
