@@ -1,0 +1,520 @@
+"""Trace test: a certificate that a solution set of a parametrized family is complete.
+
+For a square family F(x; p) = 0 (n equations, n unknowns, parameters p entering polynomially) and a set W01
+of solutions at generic parameters p0 (e.g. found by monodromy, :mod:`.monodromy`), the multiprojective trace
+test of Leykin, Rodriguez and Sottile ("Trace test", Arnold Math. J. 4 (2018) 113-125) decides whether W01 is
+every solution of the irreducible component(s) of the incidence variety that it samples.
+
+Construction (the route of HomotopyContinuation.jl's ``verify_solution_completeness``):
+
+1. a random complex direction q0 - p0 in parameter space gives the curve
+   C = {(x, s) : F(x; p0 + s (q0 - p0)) = 0} in C^n x C; W01 x {0} = C intersected with {s = 0};
+2. W10 = C intersected with {l(x) = 0} for a random affine form l(x) = l_1 x_1 + ... + l_n x_n + l_{n+1}:
+   the solutions of :class:`TraceSliceSystem` [F(x; p0 + s (q0 - p0)); l(x)] in the unknowns (x, s) with the
+   parameters l, found by monodromy (:func:`.monodromy.monodromy_solve`) from one point (a point of W01
+   moved to s = 1, and a hyperplane through it moved to a random l), then re-solved at other random l until
+   the count agrees several times (:func:`trace_witnesses`);
+3. the union S = (W01 x {0}) + W10 is the intersection of C with the member tau = 0 of the pencil
+   {s l(x) = tau} (:class:`TracePencilSystem`); S is tracked to tau = +eps gamma and to tau = -eps gamma
+   (gamma a random unit complex number) and the trace
+   ``trace = (sum(S+) - sum(S)) - (sum(S) - sum(S-))`` is computed (:func:`compute_trace`).  The sum of the
+   points of a complete intersection of the curve's sampled components with the pencil is an affine-linear
+   function of tau, so the trace (a second difference) is zero up to rounding; for a proper subset
+   (a point missing from W01 or from W10) it is not linear, and the trace is the second difference of the
+   missing points, nonzero for generic data.
+
+Every path's outcome is recorded (``outcomes``: counts of the engine's statuses per direction).  A path that
+does not end at a regular, distinct point at tau = +-eps gamma makes the attempt lost: the pencil is tried
+again with another gamma (``attempts``); if every attempt loses a path the verdict is ``undecided``, never
+``passed``.  ``detection`` gives the smallest second difference of a single point (relative): the trace a set
+with that one point missing would have, a measure of how clearly the test separates complete from incomplete.
+
+What this proves and what it does not: the trace certifies completeness for the components of C through the
+points of W01 (monodromy from one seed samples one irreducible component); solutions on other components of
+the family (e.g. a component where some unknown is identically zero) are outside its scope.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import asdict, dataclass, field, replace
+
+import numpy as np
+
+from .endgame import SolveOptions, duplicate_groups
+from .homotopies import ParameterHomotopy
+from .monodromy import MonodromyOptions, monodromy_solve
+from .results import STATUSES, SUCCESS
+from .tracker import track_paths
+
+__all__ = ["TraceSliceSystem", "TracePencilSystem", "TraceTestOptions", "TraceResult", "TraceTestResult",
+           "trace_witnesses", "compute_trace", "verify_solution_completeness", "random_direction"]
+
+
+def _crandn(rng, *shape):
+    return (rng.normal(size=shape) + 1j * rng.normal(size=shape)) / np.sqrt(2.0)
+
+
+class _CurveSystem:
+    """F(x; p0 + s v) in the unknowns y = (x, s): values, Jacobian d/d(x, s) (dF/ds = dF/dp . v)."""
+
+    def __init__(self, system, p0, v):
+        if system.neq != system.n:
+            raise ValueError("the trace test needs a square family (as many equations as unknowns)")
+        self.base = system
+        self.p0 = np.asarray(p0, dtype=complex)
+        self.v = np.asarray(v, dtype=complex)
+        if self.p0.shape != (system.m,) or self.v.shape != (system.m,):
+            raise ValueError(f"expected {system.m} parameters")
+        self.nx = system.n
+
+    def _split(self, y):
+        y = np.asarray(y, dtype=complex)
+        if y.ndim == 1:
+            y = y[None, :]
+        x = np.ascontiguousarray(y[:, :self.nx])
+        s = y[:, self.nx]
+        return y, x, s, self.p0[None, :] + s[:, None] * self.v[None, :]
+
+    def _curve(self, y, jac: bool):
+        y, x, s, p = self._split(y)
+        if not jac:
+            return y, x, s, self.base.evaluate(x, p), None
+        directional = getattr(self.base, "evaluate_directional", None)
+        if directional is not None:  # F, dF/dx and dF/dp . v without the full dF/dp
+            F, J, Fs = directional(x, p, self.v)
+        else:
+            F, J, JP = self.base.evaluate_all(x, p)
+            Fs = np.einsum("nik,k->ni", JP, self.v)
+        N = len(y)
+        Jy = np.empty((N, self.nx, self.nx + 1), dtype=complex)
+        Jy[:, :, :self.nx] = J
+        Jy[:, :, self.nx] = Fs
+        return y, x, s, F, Jy
+
+    def _mp_curve(self):
+        """mpmath evaluators of the curve: (F(y), J(y)) from the base system's ``mp_functions``."""
+        import mpmath
+
+        fF, fJ, fP = self.base.mp_functions()
+        p0 = [mpmath.mpc(complex(c)) for c in self.p0]
+        v = [mpmath.mpc(complex(c)) for c in self.v]
+        nx = self.nx
+
+        def curve(y):
+            x = [y[i] for i in range(nx)]
+            s = y[nx]
+            p = [a + s * b for a, b in zip(p0, v)]
+            F = fF(x, p)
+            J, JP = fJ(x, p), fP(x, p)
+            Jy = mpmath.matrix(nx, nx + 1)
+            for i in range(nx):
+                for j in range(nx):
+                    Jy[i, j] = J[i, j]
+                Jy[i, nx] = mpmath.fsum(JP[i, k] * v[k] for k in range(len(v)))
+            return F, Jy
+
+        return curve
+
+
+class TraceSliceSystem(_CurveSystem):
+    """[F(x; p0 + s v); l . (x, 1)] in the unknowns (x, s) (n + 1), parameters l (n + 1): C cut by l(x) = 0.
+
+    Evaluators follow :class:`.systems.PolynomialSystem` (``evaluate``, ``evaluate_and_jacobian``,
+    ``evaluate_all`` with dG/dl, ``evaluate_directional``, ``mp_functions``)."""
+
+    def __init__(self, system, p0, v):
+        super().__init__(system, p0, v)
+        self.n = self.nx + 1
+        self.neq = self.nx + 1
+        self.m = self.nx + 1
+        self.name = f"trace_slice({getattr(system, 'name', 'system')})"
+
+    @staticmethod
+    def _affine(x):
+        return np.concatenate([x, np.ones((len(x), 1), dtype=complex)], axis=1)
+
+    def _lin(self, x, l):
+        l = np.asarray(l, dtype=complex)
+        return np.einsum("nk,nk->n", self._affine(x), np.broadcast_to(l, (len(x), self.m)))
+
+    def evaluate(self, y, l=None):
+        y, x, s, F, _ = self._curve(y, False)
+        return np.concatenate([F, self._lin(x, l)[:, None]], axis=1)
+
+    def evaluate_and_jacobian(self, y, l=None):
+        y, x, s, F, Jc = self._curve(y, True)
+        N = len(y)
+        l = np.broadcast_to(np.asarray(l, dtype=complex), (N, self.m))
+        G = np.concatenate([F, self._lin(x, l)[:, None]], axis=1)
+        J = np.zeros((N, self.neq, self.n), dtype=complex)
+        J[:, :self.nx, :] = Jc
+        J[:, self.nx, :self.nx] = l[:, :self.nx]
+        return G, J
+
+    def evaluate_all(self, y, l=None):
+        G, J = self.evaluate_and_jacobian(y, l)
+        y = np.atleast_2d(np.asarray(y, dtype=complex))
+        JP = np.zeros((len(y), self.neq, self.m), dtype=complex)
+        JP[:, self.nx, :] = self._affine(y[:, :self.nx])
+        return G, J, JP
+
+    def evaluate_directional(self, y, l, dl):
+        G, J = self.evaluate_and_jacobian(y, l)
+        y = np.atleast_2d(np.asarray(y, dtype=complex))
+        Gt = np.zeros_like(G)
+        Gt[:, self.nx] = np.einsum("nk,nk->n", self._affine(y[:, :self.nx]),
+                                   np.broadcast_to(np.asarray(dl, dtype=complex), (len(y), self.m)))
+        return G, J, Gt
+
+    def mp_functions(self):
+        import mpmath
+
+        curve = self._mp_curve()
+        nx = self.nx
+
+        def mF(y, l):
+            F, _ = curve(y)
+            return mpmath.matrix(list(F) + [mpmath.fsum(l[k] * y[k] for k in range(nx)) + l[nx]])
+
+        def mJ(y, l):
+            _, Jc = curve(y)
+            J = mpmath.matrix(nx + 1, nx + 1)
+            for i in range(nx):
+                for j in range(nx + 1):
+                    J[i, j] = Jc[i, j]
+            for j in range(nx):
+                J[nx, j] = l[j]
+            return J
+
+        def mP(y, l):
+            JP = mpmath.matrix(nx + 1, nx + 1)
+            for j in range(nx):
+                JP[nx, j] = y[j]
+            JP[nx, nx] = 1
+            return JP
+
+        return mF, mJ, mP
+
+
+class TracePencilSystem(_CurveSystem):
+    """[F(x; p0 + s v); s l . (x, 1) - tau] in the unknowns (x, s), one parameter tau: C cut by the pencil member
+    s l(x) = tau; tau = 0 is the union (W01 x {0}) + W10."""
+
+    def __init__(self, system, p0, v, l):
+        super().__init__(system, p0, v)
+        self.l = np.asarray(l, dtype=complex)
+        if self.l.shape != (self.nx + 1,):
+            raise ValueError(f"expected {self.nx + 1} coefficients of l")
+        self.n = self.nx + 1
+        self.neq = self.nx + 1
+        self.m = 1
+        self.name = f"trace_pencil({getattr(system, 'name', 'system')})"
+
+    def _tau(self, tau, N):
+        tau = np.asarray(tau, dtype=complex)
+        return np.broadcast_to(tau.reshape(-1) if tau.ndim <= 1 else tau[:, 0], (N,))
+
+    def evaluate(self, y, tau=None):
+        y, x, s, F, _ = self._curve(y, False)
+        lx = x @ self.l[:self.nx] + self.l[self.nx]
+        return np.concatenate([F, (s * lx - self._tau(tau, len(y)))[:, None]], axis=1)
+
+    def evaluate_and_jacobian(self, y, tau=None):
+        y, x, s, F, Jc = self._curve(y, True)
+        N = len(y)
+        lx = x @ self.l[:self.nx] + self.l[self.nx]
+        G = np.concatenate([F, (s * lx - self._tau(tau, N))[:, None]], axis=1)
+        J = np.zeros((N, self.neq, self.n), dtype=complex)
+        J[:, :self.nx, :] = Jc
+        J[:, self.nx, :self.nx] = s[:, None] * self.l[None, :self.nx]
+        J[:, self.nx, self.nx] = lx
+        return G, J
+
+    def evaluate_all(self, y, tau=None):
+        G, J = self.evaluate_and_jacobian(y, tau)
+        JP = np.zeros((len(G), self.neq, 1), dtype=complex)
+        JP[:, self.nx, 0] = -1.0
+        return G, J, JP
+
+    def evaluate_directional(self, y, tau, dtau):
+        G, J = self.evaluate_and_jacobian(y, tau)
+        Gt = np.zeros_like(G)
+        Gt[:, self.nx] = -self._tau(dtau, len(G))
+        return G, J, Gt
+
+    def mp_functions(self):
+        import mpmath
+
+        curve = self._mp_curve()
+        nx = self.nx
+        l = [mpmath.mpc(complex(c)) for c in self.l]
+
+        def lin(y):
+            return mpmath.fsum(l[k] * y[k] for k in range(nx)) + l[nx]
+
+        def mF(y, tau):
+            F, _ = curve(y)
+            return mpmath.matrix(list(F) + [y[nx] * lin(y) - tau[0]])
+
+        def mJ(y, tau):
+            _, Jc = curve(y)
+            J = mpmath.matrix(nx + 1, nx + 1)
+            for i in range(nx):
+                for j in range(nx + 1):
+                    J[i, j] = Jc[i, j]
+            for j in range(nx):
+                J[nx, j] = y[nx] * l[j]
+            J[nx, nx] = lin(y)
+            return J
+
+        def mP(y, tau):
+            JP = mpmath.matrix(nx + 1, 1)
+            JP[nx, 0] = -1
+            return JP
+
+        return mF, mJ, mP
+
+
+# ---------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class TraceTestOptions:
+    """Settings of :func:`verify_solution_completeness` (defaults in brackets).
+
+    * ``eps`` [0.1]: the pencil is tracked to tau = +-eps gamma (|gamma| = 1);
+    * ``tol`` [1e-8]: largest relative trace accepted as zero (see :class:`TraceResult`);
+    * ``attempts`` [3]: gammas tried when a pencil path is lost;
+    * ``direction_scale`` [1.0]: q0 = p0 + direction_scale (1 + |p0|) z, z standard complex normal;
+    * ``witness_loops_no_progress`` [5]: loops without a new point that end the first W10 monodromy;
+    * ``confirm_loops_no_progress`` [3]: the same for the re-solves at other random l;
+    * ``confirmations`` [3]: re-solves at other random l that must find the same count (at most
+      ``max_confirm_tries`` [8] tried; a larger count replaces the set and restarts the agreement count);
+    * ``max_loops`` [200]: cap of every monodromy run;
+    * ``solve`` [SolveOptions(retry_mpmath=False)]: tracking options of the monodromy loops and moves;
+    * ``pencil`` [SolveOptions()]: tracking options of the pencil paths (arbitrary-precision retries included).
+    """
+
+    eps: float = 0.1
+    tol: float = 1e-8
+    attempts: int = 3
+    direction_scale: float = 1.0
+    witness_loops_no_progress: int = 5
+    confirm_loops_no_progress: int = 3
+    confirmations: int = 3
+    max_confirm_tries: int = 8
+    max_loops: int = 200
+    solve: SolveOptions = field(default_factory=lambda: SolveOptions(retry_mpmath=False))
+    pencil: SolveOptions = field(default_factory=SolveOptions)
+
+    def to_dict(self) -> dict:
+        d = {k: v for k, v in asdict(self).items() if k not in ("solve", "pencil")}
+        d["solve"] = self.solve.to_dict()
+        d["pencil"] = self.pencil.to_dict()
+        return d
+
+
+@dataclass(frozen=True)
+class TraceResult:
+    """One evaluation of the trace.
+
+    * ``trace``: the (n + 1)-vector (sum(S+) - sum(S)) - (sum(S) - sum(S-));
+    * ``scale``: max over the coordinates of max(|sum(S+) - sum(S)|, |sum(S) - sum(S-)|, 1), the size of the
+      first differences (HomotopyContinuation.jl's normalization, with a common scale);
+    * ``relative``: max_k |trace_k| / scale; ``passed`` when every path ended regular and distinct and
+      ``relative <= tol``; ``status``: "passed", "failed" (trace not zero) or "undecided" (a path lost);
+    * ``detection``: min over the points of S of max_k |y_k(+) - 2 y_k(0) + y_k(-)| / scale: the relative trace
+      of S with that single point removed (``detection_median``: the median);
+    * ``outcomes``: per attempt and direction, counts of path statuses (plus ``duplicate`` endpoints);
+    """
+
+    status: str
+    trace: np.ndarray
+    relative: float
+    scale: float
+    tol: float
+    detection: float
+    detection_median: float
+    gamma: complex
+    eps: float
+    points: int
+    outcomes: list
+    seconds: float
+    endpoints_plus: np.ndarray | None = None
+    endpoints_minus: np.ndarray | None = None
+
+    @property
+    def passed(self) -> bool:
+        return self.status == "passed"
+
+    def to_dict(self) -> dict:
+        return {"status": self.status, "trace": {"re": np.real(self.trace).tolist(), "im": np.imag(self.trace).tolist()},
+                "trace_norm": float(np.max(np.abs(self.trace))) if self.trace.size else None,
+                "relative": self.relative, "scale": self.scale, "tol": self.tol, "detection": self.detection,
+                "detection_median": self.detection_median, "gamma": {"re": self.gamma.real, "im": self.gamma.imag},
+                "eps": self.eps, "points": self.points, "outcomes": self.outcomes, "seconds": self.seconds}
+
+
+@dataclass(frozen=True)
+class TraceTestResult:
+    """A full trace test: q0, l, the additional witnesses W10 and how they were found, and the trace."""
+
+    trace: TraceResult
+    q0: np.ndarray
+    l: np.ndarray
+    W10: np.ndarray
+    witnesses: dict
+    seed: int
+    seconds: float
+
+    @property
+    def status(self) -> str:
+        return self.trace.status
+
+    @property
+    def passed(self) -> bool:
+        return self.trace.passed
+
+
+def random_direction(p0, rng, scale: float = 1.0):
+    """q0 = p0 + scale (1 + |p0|) z, z standard complex normal (componentwise)."""
+    p0 = np.asarray(p0, dtype=complex)
+    return p0 + scale * (1 + np.abs(p0)) * _crandn(rng, *p0.shape)
+
+
+def _track(system, X, p_from, p_to, options, seed):
+    """Track rows X of ``system`` from parameters p_from (t = 1) to p_to (t = 0); the PathResults."""
+    X = np.asarray(X, dtype=complex).reshape(-1, system.n)
+    if not len(X):
+        return []
+    hom = ParameterHomotopy(system, np.atleast_1d(p_from), np.atleast_1d(p_to))
+    return list(track_paths(hom, X, options, seed=seed).paths)
+
+
+def _regular_distinct(paths, tol):
+    """(endpoints, outcome counts, all regular and distinct) of a list of PathResults."""
+    counts = {s: 0 for s in STATUSES}
+    for p in paths:
+        counts[p.status] = counts.get(p.status, 0) + 1
+    X = np.array([p.endpoint for p in paths])
+    ok = all(p.status == SUCCESS for p in paths)
+    dup = duplicate_groups(X, tol) if ok and len(X) > 1 else []
+    counts["duplicate"] = int(sum(len(g) for g in dup))
+    return X, counts, ok and not dup
+
+
+def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestOptions | None = None,
+                    verbose: bool = False):
+    """W10 = C cut by l(x) = 0 for a random l (module doc, step 2).  Returns (W10, q0, l, record dict)."""
+    o = options or TraceTestOptions()
+    rng = np.random.default_rng(seed)
+    t0 = time.perf_counter()
+    p0 = np.asarray(p0, dtype=complex)
+    W01 = np.asarray(W01, dtype=complex).reshape(-1, system.n)
+    if q0 is None:
+        q0 = random_direction(p0, rng, o.direction_scale)
+    q0 = np.asarray(q0, dtype=complex)
+    slice_ = TraceSliceSystem(system, p0, q0 - p0)
+    record = {"moves": [], "monodromy": []}
+    # a point of C at s = 1: a point of W01 moved from p0 to q0 (the first that arrives regular)
+    y1 = None
+    for i in range(len(W01)):
+        paths = _track(system, W01[i:i + 1], p0, q0, o.solve, seed)
+        record["moves"].append({"from": "W01", "index": i, "status": paths[0].status})
+        if paths[0].status == SUCCESS:
+            y1 = np.concatenate([paths[0].endpoint, [1.0]])
+            break
+    if y1 is None:
+        raise RuntimeError("no point of W01 could be moved to the direction point q0")
+    # a hyperplane through it, then a generic one
+    l1 = np.exp(2j * np.pi * rng.random(system.n))
+    l1 = np.concatenate([l1, [-(l1 @ y1[:system.n])]])
+    l0 = _crandn(rng, system.n + 1)
+    paths = _track(slice_, y1[None, :], l1, l0, o.solve, seed)
+    record["moves"].append({"from": "hyperplane through the moved point", "status": paths[0].status})
+    if paths[0].status != SUCCESS:
+        raise RuntimeError(f"the first point of W10 could not be moved to a generic l ({paths[0].status})")
+
+    def mono(l, X, loops_np, s):
+        r = monodromy_solve(slice_, parameters=l, solutions=X, seed=s,
+                            options=MonodromyOptions(max_loops_no_progress=loops_np, max_loops=o.max_loops,
+                                                     solve=o.solve))
+        record["monodromy"].append({**r.to_dict(), "start_points": len(np.atleast_2d(X))})
+        if verbose:
+            print(f"  W10 monodromy: {r.summary_line()}", flush=True)
+        return r
+
+    best = mono(l0, paths[0].endpoint[None, :], o.witness_loops_no_progress, seed)
+    best_l = l0
+    agreed = 0
+    tries = 0
+    while agreed < o.confirmations and tries < o.max_confirm_tries:
+        tries += 1
+        k = _crandn(rng, system.n + 1)
+        moved = _track(slice_, best.solutions, best_l, k, o.solve, seed + tries)
+        X = np.array([p.endpoint for p in moved if p.status == SUCCESS]).reshape(-1, slice_.n)
+        record["moves"].append({"from": "W10 to another l", "paths": len(moved), "success": int(len(X))})
+        if not len(X):
+            continue
+        r = mono(k, X, o.confirm_loops_no_progress, seed + 100 + tries)
+        if len(r.solutions) == len(best.solutions):
+            agreed += 1
+        elif len(r.solutions) > len(best.solutions):
+            best, best_l, agreed = r, k, 0
+    record.update({"count": int(len(best.solutions)), "agreements": agreed, "confirm_tries": tries,
+                   "seconds": time.perf_counter() - t0})
+    return np.array(best.solutions), q0, np.asarray(best_l), record
+
+
+def compute_trace(system, p0, q0, l, W01, W10, options: TraceTestOptions | None = None, seed: int = 0,
+                  gamma=None, keep_endpoints: bool = False) -> TraceResult:
+    """Track S = (W01 x {0}) + W10 along the pencil s l(x) = tau to +-eps gamma and evaluate the trace
+    (module doc, step 3).  ``gamma`` (unit complex) is drawn from ``seed`` when None; a lost path makes the
+    attempt count as lost and another gamma is drawn (``options.attempts`` in all)."""
+    o = options or TraceTestOptions()
+    rng = np.random.default_rng(seed + 7919)
+    t0 = time.perf_counter()
+    W01 = np.asarray(W01, dtype=complex).reshape(-1, system.n)
+    W10 = np.asarray(W10, dtype=complex).reshape(-1, system.n + 1)
+    S = np.concatenate([np.concatenate([W01, np.zeros((len(W01), 1), dtype=complex)], axis=1), W10], axis=0)
+    pencil = TracePencilSystem(system, p0, np.asarray(q0, dtype=complex) - np.asarray(p0, dtype=complex), l)
+    outcomes = []
+    for attempt in range(o.attempts):
+        g = complex(gamma) if (gamma is not None and attempt == 0) else complex(np.exp(2j * np.pi * rng.random()))
+        ends, ok = [], True
+        rec = {"attempt": attempt, "gamma": {"re": g.real, "im": g.imag}}
+        for sign, name in ((1.0, "plus"), (-1.0, "minus")):
+            paths = _track(pencil, S, [0.0], [sign * o.eps * g], o.pencil, seed + attempt)
+            X, counts, good = _regular_distinct(paths, o.pencil.duplicate_tol)
+            rec[name] = counts
+            ends.append(X)
+            ok &= good
+        outcomes.append(rec)
+        if not ok:
+            continue
+        Sp, Sm = ends
+        s0, sp_, sm_ = S.sum(axis=0), Sp.sum(axis=0), Sm.sum(axis=0)
+        trace = (sp_ - s0) - (s0 - sm_)
+        scale = float(max(np.max(np.abs(sp_ - s0)), np.max(np.abs(s0 - sm_)), 1.0))
+        rel = float(np.max(np.abs(trace)) / scale)
+        d2 = np.max(np.abs(Sp - 2 * S + Sm), axis=1) / scale
+        return TraceResult(status="passed" if rel <= o.tol else "failed", trace=trace, relative=rel, scale=scale,
+                           tol=o.tol, detection=float(np.min(d2)), detection_median=float(np.median(d2)), gamma=g,
+                           eps=o.eps, points=len(S), outcomes=outcomes, seconds=time.perf_counter() - t0,
+                           endpoints_plus=Sp if keep_endpoints else None,
+                           endpoints_minus=Sm if keep_endpoints else None)
+    return TraceResult(status="undecided", trace=np.full(system.n + 1, np.nan + 0j), relative=float("nan"),
+                       scale=float("nan"), tol=o.tol, detection=float("nan"), detection_median=float("nan"),
+                       gamma=complex(np.nan), eps=o.eps, points=len(S), outcomes=outcomes,
+                       seconds=time.perf_counter() - t0)
+
+
+def verify_solution_completeness(system, p0, W01, seed: int = 0, options: TraceTestOptions | None = None,
+                                 verbose: bool = False) -> TraceTestResult:
+    """Trace test of the solution set W01 of ``system`` at parameters p0 (module doc): W10 by
+    :func:`trace_witnesses`, then :func:`compute_trace`.  ``result.status`` is "passed", "failed" or
+    "undecided"."""
+    o = options or TraceTestOptions()
+    t0 = time.perf_counter()
+    W10, q0, l, rec = trace_witnesses(system, p0, W01, seed=seed, options=o, verbose=verbose)
+    tr = compute_trace(system, p0, q0, l, W01, W10, o, seed=seed)
+    return TraceTestResult(trace=tr, q0=q0, l=l, W10=W10, witnesses=rec, seed=seed, seconds=time.perf_counter() - t0)
