@@ -123,16 +123,16 @@ class TraceSliceSystem(_CurveSystem):
     Evaluators follow :class:`.systems.PolynomialSystem` (``evaluate``, ``evaluate_and_jacobian``,
     ``evaluate_all`` with dG/dl, ``evaluate_directional``, ``mp_functions``)."""
 
-    def __init__(self, system, p0, v):
+    def __init__(self, system, p0, v, coordinates=None):
         super().__init__(system, p0, v)
+        self.coords = np.arange(self.nx) if coordinates is None else np.asarray(coordinates, dtype=int)
         self.n = self.nx + 1
         self.neq = self.nx + 1
-        self.m = self.nx + 1
+        self.m = len(self.coords) + 1
         self.name = f"trace_slice({getattr(system, 'name', 'system')})"
 
-    @staticmethod
-    def _affine(x):
-        return np.concatenate([x, np.ones((len(x), 1), dtype=complex)], axis=1)
+    def _affine(self, x):
+        return np.concatenate([x[:, self.coords], np.ones((len(x), 1), dtype=complex)], axis=1)
 
     def _lin(self, x, l):
         l = np.asarray(l, dtype=complex)
@@ -149,7 +149,7 @@ class TraceSliceSystem(_CurveSystem):
         G = np.concatenate([F, self._lin(x, l)[:, None]], axis=1)
         J = np.zeros((N, self.neq, self.n), dtype=complex)
         J[:, :self.nx, :] = Jc
-        J[:, self.nx, :self.nx] = l[:, :self.nx]
+        J[:, self.nx, self.coords] = l[:, :-1]
         return G, J
 
     def evaluate_all(self, y, l=None):
@@ -172,10 +172,12 @@ class TraceSliceSystem(_CurveSystem):
 
         curve = self._mp_curve()
         nx = self.nx
+        cs = [int(c) for c in self.coords]
+        k = len(cs)
 
         def mF(y, l):
             F, _ = curve(y)
-            return mpmath.matrix(list(F) + [mpmath.fsum(l[k] * y[k] for k in range(nx)) + l[nx]])
+            return mpmath.matrix(list(F) + [mpmath.fsum(l[j] * y[c] for j, c in enumerate(cs)) + l[k]])
 
         def mJ(y, l):
             _, Jc = curve(y)
@@ -183,15 +185,15 @@ class TraceSliceSystem(_CurveSystem):
             for i in range(nx):
                 for j in range(nx + 1):
                     J[i, j] = Jc[i, j]
-            for j in range(nx):
-                J[nx, j] = l[j]
+            for j, c in enumerate(cs):
+                J[nx, c] = l[j]
             return J
 
         def mP(y, l):
-            JP = mpmath.matrix(nx + 1, nx + 1)
-            for j in range(nx):
-                JP[nx, j] = y[j]
-            JP[nx, nx] = 1
+            JP = mpmath.matrix(nx + 1, k + 1)
+            for j, c in enumerate(cs):
+                JP[nx, j] = y[c]
+            JP[nx, k] = 1
             return JP
 
         return mF, mJ, mP
@@ -201,11 +203,12 @@ class TracePencilSystem(_CurveSystem):
     """[F(x; p0 + s v); s l . (x, 1) - tau] in the unknowns (x, s), one parameter tau: C cut by the pencil member
     s l(x) = tau; tau = 0 is the union (W01 x {0}) + W10."""
 
-    def __init__(self, system, p0, v, l):
+    def __init__(self, system, p0, v, l, coordinates=None):
         super().__init__(system, p0, v)
+        self.coords = np.arange(self.nx) if coordinates is None else np.asarray(coordinates, dtype=int)
         self.l = np.asarray(l, dtype=complex)
-        if self.l.shape != (self.nx + 1,):
-            raise ValueError(f"expected {self.nx + 1} coefficients of l")
+        if self.l.shape != (len(self.coords) + 1,):
+            raise ValueError(f"expected {len(self.coords) + 1} coefficients of l")
         self.n = self.nx + 1
         self.neq = self.nx + 1
         self.m = 1
@@ -217,17 +220,17 @@ class TracePencilSystem(_CurveSystem):
 
     def evaluate(self, y, tau=None):
         y, x, s, F, _ = self._curve(y, False)
-        lx = x @ self.l[:self.nx] + self.l[self.nx]
+        lx = x[:, self.coords] @ self.l[:-1] + self.l[-1]
         return np.concatenate([F, (s * lx - self._tau(tau, len(y)))[:, None]], axis=1)
 
     def evaluate_and_jacobian(self, y, tau=None):
         y, x, s, F, Jc = self._curve(y, True)
         N = len(y)
-        lx = x @ self.l[:self.nx] + self.l[self.nx]
+        lx = x[:, self.coords] @ self.l[:-1] + self.l[-1]
         G = np.concatenate([F, (s * lx - self._tau(tau, N))[:, None]], axis=1)
         J = np.zeros((N, self.neq, self.n), dtype=complex)
         J[:, :self.nx, :] = Jc
-        J[:, self.nx, :self.nx] = s[:, None] * self.l[None, :self.nx]
+        J[:, self.nx, self.coords] = s[:, None] * self.l[None, :-1]
         J[:, self.nx, self.nx] = lx
         return G, J
 
@@ -249,9 +252,10 @@ class TracePencilSystem(_CurveSystem):
         curve = self._mp_curve()
         nx = self.nx
         l = [mpmath.mpc(complex(c)) for c in self.l]
+        cs = [int(c) for c in self.coords]
 
         def lin(y):
-            return mpmath.fsum(l[k] * y[k] for k in range(nx)) + l[nx]
+            return mpmath.fsum(l[j] * y[c] for j, c in enumerate(cs)) + l[-1]
 
         def mF(y, tau):
             F, _ = curve(y)
@@ -263,8 +267,8 @@ class TracePencilSystem(_CurveSystem):
             for i in range(nx):
                 for j in range(nx + 1):
                     J[i, j] = Jc[i, j]
-            for j in range(nx):
-                J[nx, j] = y[nx] * l[j]
+            for j, c in enumerate(cs):
+                J[nx, c] = y[nx] * l[j]
             J[nx, nx] = lin(y)
             return J
 
@@ -365,6 +369,7 @@ class TraceTestResult:
     witnesses: dict
     seed: int
     seconds: float
+    coordinates: np.ndarray | None = None
 
     @property
     def status(self) -> str:
@@ -402,10 +407,24 @@ def _regular_distinct(paths, tol):
     return X, counts, ok and not dup
 
 
+def _coordinates(system, coordinates, W01):
+    """The coordinates of x the trace test works in (all by default), checked to separate the points of W01."""
+    cs = np.arange(system.n) if coordinates is None else np.asarray(coordinates, dtype=int)
+    if len(np.unique(cs)) != len(cs) or cs.min() < 0 or cs.max() >= system.n:
+        raise ValueError("coordinates must be distinct indices of unknowns")
+    P = np.asarray(W01, dtype=complex).reshape(-1, system.n)[:, cs]
+    if duplicate_groups(P, 1e-6):
+        raise ValueError("the chosen coordinates do not separate the points of W01: the projection is not injective")
+    return cs
+
+
 def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestOptions | None = None,
-                    verbose: bool = False):
-    """W10 = C cut by l(x) = 0 for a random l (module doc, step 2).  Returns (W10, q0, l, record dict)."""
+                    verbose: bool = False, coordinates=None):
+    """W10 = C cut by l(x) = 0 for a random l (module doc, step 2).  Returns (W10, q0, l, record dict).
+    ``coordinates``: see :func:`verify_solution_completeness`."""
     o = options or TraceTestOptions()
+    cs = _coordinates(system, coordinates, W01)
+    k1 = len(cs) + 1
     rng = np.random.default_rng(seed)
     t0 = time.perf_counter()
     p0 = np.asarray(p0, dtype=complex)
@@ -413,7 +432,7 @@ def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestO
     if q0 is None:
         q0 = random_direction(p0, rng, o.direction_scale)
     q0 = np.asarray(q0, dtype=complex)
-    slice_ = TraceSliceSystem(system, p0, q0 - p0)
+    slice_ = TraceSliceSystem(system, p0, q0 - p0, cs)
     record = {"moves": [], "monodromy": []}
     # a point of C at s = 1: a point of W01 moved from p0 to q0 (the first that arrives regular)
     y1 = None
@@ -426,9 +445,9 @@ def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestO
     if y1 is None:
         raise RuntimeError("no point of W01 could be moved to the direction point q0")
     # a hyperplane through it, then a generic one
-    l1 = np.exp(2j * np.pi * rng.random(system.n))
-    l1 = np.concatenate([l1, [-(l1 @ y1[:system.n])]])
-    l0 = _crandn(rng, system.n + 1)
+    l1 = np.exp(2j * np.pi * rng.random(len(cs)))
+    l1 = np.concatenate([l1, [-(l1 @ y1[cs])]])
+    l0 = _crandn(rng, k1)
     paths = _track(slice_, y1[None, :], l1, l0, o.solve, seed)
     record["moves"].append({"from": "hyperplane through the moved point", "status": paths[0].status})
     if paths[0].status != SUCCESS:
@@ -449,7 +468,7 @@ def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestO
     tries = 0
     while agreed < o.confirmations and tries < o.max_confirm_tries:
         tries += 1
-        k = _crandn(rng, system.n + 1)
+        k = _crandn(rng, k1)
         moved = _track(slice_, best.solutions, best_l, k, o.solve, seed + tries)
         X = np.array([p.endpoint for p in moved if p.status == SUCCESS]).reshape(-1, slice_.n)
         record["moves"].append({"from": "W10 to another l", "paths": len(moved), "success": int(len(X))})
@@ -466,17 +485,20 @@ def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestO
 
 
 def compute_trace(system, p0, q0, l, W01, W10, options: TraceTestOptions | None = None, seed: int = 0,
-                  gamma=None, keep_endpoints: bool = False) -> TraceResult:
+                  gamma=None, keep_endpoints: bool = False, coordinates=None) -> TraceResult:
     """Track S = (W01 x {0}) + W10 along the pencil s l(x) = tau to +-eps gamma and evaluate the trace
-    (module doc, step 3).  ``gamma`` (unit complex) is drawn from ``seed`` when None; a lost path makes the
-    attempt count as lost and another gamma is drawn (``options.attempts`` in all)."""
+    (module doc, step 3) over the ``coordinates`` of x (all by default) and s.  ``gamma`` (unit complex) is
+    drawn from ``seed`` when None; a lost path makes the attempt count as lost and another gamma is drawn
+    (``options.attempts`` in all)."""
     o = options or TraceTestOptions()
+    cs = _coordinates(system, coordinates, W01)
+    keep = np.concatenate([cs, [system.n]])
     rng = np.random.default_rng(seed + 7919)
     t0 = time.perf_counter()
     W01 = np.asarray(W01, dtype=complex).reshape(-1, system.n)
     W10 = np.asarray(W10, dtype=complex).reshape(-1, system.n + 1)
     S = np.concatenate([np.concatenate([W01, np.zeros((len(W01), 1), dtype=complex)], axis=1), W10], axis=0)
-    pencil = TracePencilSystem(system, p0, np.asarray(q0, dtype=complex) - np.asarray(p0, dtype=complex), l)
+    pencil = TracePencilSystem(system, p0, np.asarray(q0, dtype=complex) - np.asarray(p0, dtype=complex), l, cs)
     outcomes = []
     for attempt in range(o.attempts):
         g = complex(gamma) if (gamma is not None and attempt == 0) else complex(np.exp(2j * np.pi * rng.random()))
@@ -492,6 +514,8 @@ def compute_trace(system, p0, q0, l, W01, W10, options: TraceTestOptions | None 
         if not ok:
             continue
         Sp, Sm = ends
+        # the trace in the coordinates of the curve's image (x_cs, s); the other unknowns are not linear there
+        Sp, Sm, S = Sp[:, keep], Sm[:, keep], S[:, keep]
         s0, sp_, sm_ = S.sum(axis=0), Sp.sum(axis=0), Sm.sum(axis=0)
         trace = (sp_ - s0) - (s0 - sm_)
         scale = float(max(np.max(np.abs(sp_ - s0)), np.max(np.abs(s0 - sm_)), 1.0))
@@ -502,19 +526,27 @@ def compute_trace(system, p0, q0, l, W01, W10, options: TraceTestOptions | None 
                            eps=o.eps, points=len(S), outcomes=outcomes, seconds=time.perf_counter() - t0,
                            endpoints_plus=Sp if keep_endpoints else None,
                            endpoints_minus=Sm if keep_endpoints else None)
-    return TraceResult(status="undecided", trace=np.full(system.n + 1, np.nan + 0j), relative=float("nan"),
+    return TraceResult(status="undecided", trace=np.full(len(keep), np.nan + 0j), relative=float("nan"),
                        scale=float("nan"), tol=o.tol, detection=float("nan"), detection_median=float("nan"),
                        gamma=complex(np.nan), eps=o.eps, points=len(S), outcomes=outcomes,
                        seconds=time.perf_counter() - t0)
 
 
 def verify_solution_completeness(system, p0, W01, seed: int = 0, options: TraceTestOptions | None = None,
-                                 verbose: bool = False) -> TraceTestResult:
+                                 verbose: bool = False, coordinates=None) -> TraceTestResult:
     """Trace test of the solution set W01 of ``system`` at parameters p0 (module doc): W10 by
     :func:`trace_witnesses`, then :func:`compute_trace`.  ``result.status`` is "passed", "failed" or
-    "undecided"."""
+    "undecided".
+
+    ``coordinates`` (indices of unknowns, all by default): run the test on the image C' of the curve under
+    (x, s) -> (x_coordinates, s): hyperplanes l and the trace in those coordinates only.  Valid when the
+    projection separates the solutions (checked on W01; then C -> C' is birational and witness sets
+    correspond); useful when some unknowns (e.g. ones determined linearly by the others) have poles along the
+    curve and so raise its degree, and hence the size of W10."""
     o = options or TraceTestOptions()
     t0 = time.perf_counter()
-    W10, q0, l, rec = trace_witnesses(system, p0, W01, seed=seed, options=o, verbose=verbose)
-    tr = compute_trace(system, p0, q0, l, W01, W10, o, seed=seed)
-    return TraceTestResult(trace=tr, q0=q0, l=l, W10=W10, witnesses=rec, seed=seed, seconds=time.perf_counter() - t0)
+    W10, q0, l, rec = trace_witnesses(system, p0, W01, seed=seed, options=o, verbose=verbose, coordinates=coordinates)
+    tr = compute_trace(system, p0, q0, l, W01, W10, o, seed=seed, coordinates=coordinates)
+    cs = _coordinates(system, coordinates, W01)
+    return TraceTestResult(trace=tr, q0=q0, l=l, W10=W10, witnesses=rec, seed=seed, seconds=time.perf_counter() - t0,
+                           coordinates=cs)
