@@ -1,0 +1,240 @@
+"""Certify the stored generic DGP solution sets (``cdpr_algebra/data/dgp_generic_m{m}.json``) independently of
+the literature, and record the certificates next to them (``dgp_generic_m{m}_completeness.json``).
+
+Re-runnable, NOT a ``derive_*.py`` (randomized, minutes per m):
+
+    python derivations/certify_generic_dgp.py --m 2 3 4 5 6          # trace test + monodromy from scratch
+    python derivations/certify_generic_dgp.py --m 4 5 --phc --only phc  # PHCpack's blackbox (needs ``phc``)
+
+Per m, three independent computations (each a section of the certificate; a run updates only the sections
+it computes, and drops every old section when the stored set changed):
+
+* ``trace_test`` -- the multiprojective trace test (:mod:`cdpr_algebra.homotopy.trace_test`) of the stored set
+  W01 at its parameters p0: the additional witnesses W10 (the curve F(x; p0 + s (q0 - p0)) = 0 cut by a
+  random hyperplane l(x) = 0, by monodromy, re-solved at other random l until the count agrees), then the
+  trace of W01 x {0} + W10 along the pencil s l(x) = tau.  Recorded: the hashes of the set it certifies,
+  q0, l, W10, gamma, eps, the trace and its relative size, the tolerance, every path outcome, the
+  monodromy runs, the seed and the seconds.  ``count`` is the size of the certified set.
+* ``monodromy_from_scratch`` -- monodromy from ONE seed solution of a new random complex instance (the
+  construction of ``solve_generic_dgp.py``) with NO target count, until ``--loops-no-progress`` (10)
+  consecutive loops add nothing.  The count is the one the run finds.  The stored set is then moved to the
+  new instance by a parameter homotopy and matched against the set found there (``stored_matched``).
+* ``phc`` (``--phc``, only where ``phc`` is installed) -- PHCpack's blackbox ``phc -b`` on a random complex
+  instance of the m-cable system (the whole system, so also the solutions with some lam_i = 0, another
+  component): mixed volume, regular solutions, those with every lam_i nonzero and those with some lam_i = 0,
+  wall time; the stored set moved to the same instance is matched against PHCpack's solutions.  Run it alone
+  and ``nice -n 19``: m = 4, 5 take an hour or more.
+
+Exit status 0 when every computation that ran gave a definite answer (trace test passed, monodromy count equal
+to the stored count), 1 otherwise.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "derivations"))
+
+from cdpr_algebra.dgp import fast_family, generic_path  # noqa: E402
+from cdpr_algebra.homotopy.endgame import SolveOptions  # noqa: E402
+from cdpr_algebra.homotopy.monodromy import MonodromyOptions, load_instance, monodromy_solve  # noqa: E402
+from cdpr_algebra.homotopy.solve import solve_parameter_homotopy  # noqa: E402
+from cdpr_algebra.homotopy.tracker import TrackerOptions  # noqa: E402
+from cdpr_algebra.homotopy.trace_test import TraceTestOptions, verify_solution_completeness  # noqa: E402
+
+FORMAT = "cdpr_algebra.dgp_generic_completeness"
+FORMAT_VERSION = 1
+
+
+def certificate_path(m: int) -> Path:
+    return generic_path(m).with_name(f"dgp_generic_m{m}_completeness.json")
+
+
+def data_hash(parameters, solutions) -> str:
+    """SHA-256 of the stored instance's numbers: parameters then solutions, complex128 little-endian, row-major."""
+    h = hashlib.sha256()
+    for a in (parameters, solutions):
+        h.update(np.ascontiguousarray(np.asarray(a, dtype="<c16")).tobytes())
+    return h.hexdigest()
+
+
+def _c(a):
+    a = np.asarray(a, dtype=complex)
+    return {"re": a.real.tolist(), "im": a.imag.tolist()}
+
+
+def _match(A, B, tol=1e-6):
+    """Rows of A with a row of B within tol (1 + |a|) (max-norm), and rows of B with a row of A."""
+    if not len(A) or not len(B):
+        return 0, 0
+    d = np.max(np.abs(A[:, None, :] - B[None, :, :]), axis=2)
+    close = d <= tol * (1 + np.max(np.abs(A), axis=1))[:, None]
+    return int(close.any(axis=1).sum()), int(close.any(axis=0).sum())
+
+
+def _move_stored(m, p_from, X, p_to, seed):
+    """The stored set moved to parameters p_to (gamma-trick parameter homotopy, compiled tracker, the engine's
+    projective double-precision retries): (endpoints of the successful paths, outcome counts)."""
+    fam = fast_family(m)
+    tr = solve_parameter_homotopy(fam, p_from, X, p_to, seed=seed, gamma=True,
+                                  options=SolveOptions(retry_mpmath=False)).track
+    counts = {}
+    for p in tr.paths:
+        counts[p.status] = counts.get(p.status, 0) + 1
+    Y = np.array([p.endpoint for p in tr.paths if p.status == "success"]).reshape(-1, fam.n)
+    return Y, counts
+
+
+POSE = list(range(12))  # p, u, v, w: the tensions lam_i follow linearly from the pose (and have poles on the curve)
+
+
+def trace_options():
+    """The trace test's settings for the DGP sets: the W10 monodromy tracks with predictor tolerance 1e-4 (every
+    point it adds is refined by Newton, so a coarser step only risks missing points, which the trace would show);
+    the pencil paths with the engine's defaults."""
+    return TraceTestOptions(solve=SolveOptions(tracker=TrackerOptions(predictor_tol=1e-4), retry_mpmath=False),
+                            witness_loops_no_progress=5, confirm_loops_no_progress=2, confirmations=2)
+
+
+def run_trace_test(m, p, X, seed, coordinates, verbose=True):
+    fam = fast_family(m)
+    o = trace_options()
+    t0 = time.perf_counter()
+    res = verify_solution_completeness(fam, p, X, seed=seed, options=o, verbose=verbose, coordinates=coordinates)
+    tr = res.trace
+    out = {"status": tr.status, "count": int(len(X)), "seed": seed, "q0": _c(res.q0), "l": _c(res.l),
+           "coordinates": [int(c) for c in res.coordinates],
+           "W10_count": int(len(res.W10)), "W10": _c(res.W10), "witnesses": res.witnesses, "trace": tr.to_dict(),
+           "options": o.to_dict(), "seconds": time.perf_counter() - t0}
+    if verbose:
+        print(f"m = {m}: trace test {tr.status}: |W01| = {len(X)}, |W10| = {len(res.W10)}, relative trace "
+              f"{tr.relative:.2e} (tol {tr.tol:.0e}; one point missing would give >= {tr.detection:.1e}), "
+              f"{out['seconds']:.0f} s", flush=True)
+    return out
+
+
+def run_monodromy(m, seed, loops_no_progress, p_stored, X_stored, verbose=True):
+    from solve_generic_dgp import complex_rotation, regular_robot  # noqa: E402
+    from cdpr_algebra.dgp_equations import encode
+
+    fam = fast_family(m)
+    rng = np.random.default_rng(seed)
+    R = complex_rotation(rng)
+    pos = 0.3 * (rng.normal(size=3) + 1j * rng.normal(size=3))
+    lam = rng.normal(size=m) + 1j * rng.normal(size=m)
+    x0 = encode(pos, R, lam)
+    base = regular_robot(m)
+    guess = base + 0.3 * (np.abs(base) + 0.1) * (rng.normal(size=base.size) + 1j * rng.normal(size=base.size))
+    o = MonodromyOptions(target_solutions_count=None, max_loops_no_progress=loops_no_progress, max_loops=400)
+    res = monodromy_solve(fam, seed=seed, x0=x0, p_guess=guess, options=o)
+    out = {**res.to_dict(), "max_loops_no_progress": loops_no_progress, "target_solutions_count": None,
+           "parameters": _c(res.parameters)}
+    Y, counts = _move_stored(m, p_stored, X_stored, res.parameters, seed)
+    a, b = _match(Y, res.solutions)
+    out["stored_moved"] = {"paths": int(len(X_stored)), "outcomes": counts, "stored_matched": a,
+                           "found_matched": b}
+    if verbose:
+        print(f"m = {m}: {res.summary_line()}; stored set moved there: {a} of {len(X_stored)} match, "
+              f"{b} of {len(res.solutions)} found points matched", flush=True)
+    return out
+
+
+def run_phc(m, seed, timeout, p_stored, X_stored, verbose=True):
+    import sympy as sp
+
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from bench_homotopy import phc_run  # noqa: E402
+    from solve_generic_dgp import regular_robot  # noqa: E402
+    from cdpr_algebra.dgp_equations import taut_family
+    from cdpr_algebra.homotopy.systems import PolynomialSystem
+
+    fam = taut_family(m)
+    rng = np.random.default_rng(seed)
+    base = regular_robot(m)
+    p = base + 0.3 * (np.abs(base) + 0.1) * (rng.normal(size=base.size) + 1j * rng.normal(size=base.size))
+    sub = {s: sp.Float(v.real, 17) + sp.Float(v.imag, 17) * sp.I for s, v in zip(fam.parameters, p)}
+    inst = PolynomialSystem([sp.expand(e.xreplace(sub)) for e in fam.equations], fam.variables, (),
+                            name=f"{fam.name}_instance")
+    res = phc_run(inst, np.zeros(0), timeout=timeout)
+    out = {"parameters": _c(p), "seed": seed, "timeout_seconds": timeout}
+    if res is None:
+        out["status"] = "phc not installed"
+        return out
+    out.update({"wall_seconds": res["wall"], "timeout": bool(res["timeout"]), "mixed_volume": res["paths"]})
+    if res["timeout"]:
+        out["status"] = "timeout"
+        if verbose:
+            print(f"m = {m}: phc -b stopped after {res['wall']:.0f} s (timeout)", flush=True)
+        return out
+    S = res["solutions"]
+    lam = S[:, 12:12 + m]
+    zero = np.any(np.abs(lam) <= 1e-8 * (1 + np.max(np.abs(S), axis=1))[:, None], axis=1)
+    Y, counts = _move_stored(m, p_stored, X_stored, p, seed)
+    a, b = _match(Y, S[~zero])
+    out.update({"status": "finished", "regular": int(len(S)), "regular_real": res["real"],
+                "regular_all_lam_nonzero": int((~zero).sum()), "regular_some_lam_zero": int(zero.sum()),
+                "stored_moved": {"paths": int(len(X_stored)), "outcomes": counts, "stored_matched": a,
+                                 "phc_matched": b}})
+    if verbose:
+        print(f"m = {m}: phc -b {res['wall']:.0f} s, mixed volume {res['paths']}, {len(S)} regular: "
+              f"{int((~zero).sum())} with every lam_i != 0, {int(zero.sum())} with some lam_i = 0; stored set moved "
+              f"there: {a} of {len(X_stored)} match a PHCpack solution", flush=True)
+    return out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--m", type=int, nargs="+", default=[2, 3, 4, 5, 6], choices=[2, 3, 4, 5, 6])
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--only", nargs="+", choices=["trace", "monodromy", "phc"], default=None,
+                    help="sections to compute (default: trace and monodromy, plus phc with --phc)")
+    ap.add_argument("--phc", action="store_true", help="also PHCpack's blackbox on a random complex instance")
+    ap.add_argument("--phc-timeout", type=float, default=3 * 3600.0)
+    ap.add_argument("--loops-no-progress", type=int, default=10)
+    ap.add_argument("--coordinates", choices=["pose", "all"], default="pose",
+                    help="unknowns the trace test works in: the 12 pose unknowns (default; they separate the "
+                         "solutions, checked) or all")
+    args = ap.parse_args(argv)
+    sections = set(args.only or ["trace", "monodromy"] + (["phc"] if args.phc else []))
+    status = 0
+    for m in args.m:
+        path = generic_path(m)
+        p, X, _ = load_instance(path)
+        h = data_hash(p, X)
+        cpath = certificate_path(m)
+        cert = json.loads(cpath.read_text()) if cpath.exists() else {}
+        if cert.get("stored_set", {}).get("data_sha256") != h:
+            cert = {}  # a new stored set: every old section is void
+        cert.update({"format": FORMAT, "format_version": FORMAT_VERSION, "m": m,
+                     "stored_set": {"path": f"cdpr_algebra/data/{path.name}", "data_sha256": h,
+                                    "file_sha256": hashlib.sha256(path.read_bytes()).hexdigest(),
+                                    "count": int(len(X)), "unknowns": int(X.shape[1])},
+                     "command": "python derivations/certify_generic_dgp.py --m " + str(m)})
+        if "trace" in sections:
+            cert["trace_test"] = run_trace_test(m, p, X, args.seed, POSE if args.coordinates == "pose" else None)
+            status |= cert["trace_test"]["status"] != "passed"
+        if "monodromy" in sections:
+            cert["monodromy_from_scratch"] = run_monodromy(m, args.seed, args.loops_no_progress, p, X)
+            status |= cert["monodromy_from_scratch"]["count"] != len(X)
+        if "phc" in sections:
+            cert["phc"] = run_phc(m, args.seed, args.phc_timeout, p, X)
+        if "trace_test" in cert and cert["trace_test"]["status"] == "passed":
+            cert["count"] = cert["trace_test"]["count"]
+        else:
+            cert.pop("count", None)
+        cpath.write_text(json.dumps(cert, indent=1) + "\n", encoding="utf-8")
+        print(f"m = {m}: written {cpath.relative_to(ROOT)}", flush=True)
+    return int(status)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
