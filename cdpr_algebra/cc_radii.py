@@ -42,10 +42,20 @@ an extra coordinate k / 1024 that the homotopy keeps constant (equation k - roun
 tracker evaluates subsets of paths without their indices.  Evaluation is hand-written numpy over monomial tables
 (the equations are linear in the coefficients, so dH/dt = dF/dc (c1 - c0) costs one contraction).
 
-Real critical points are polished by Newton in real arithmetic; the minimizing one can be certified by interval
-arithmetic (:func:`certify_radius`: the cubic's coefficients enclosed by arb determinants, then the Krawczyk test
-of :mod:`.intervals` on the Lagrange system), which proves a true critical point of the true surface at the
-reported distance; that it is the nearest rests on the completeness of the homotopy solve (no failed path).
+Real critical points are polished by Newton in real arithmetic.  With ``certify=True`` r_min gets two separate
+proofs (``CCRadii.radius_certificate``):
+
+* **critical point** (:func:`certify_radius`): the cubic's coefficients enclosed by arb determinants, then the
+  Krawczyk test of :mod:`.intervals` on the Lagrange system: a true critical point of the true surface exists at a
+  distance in ``radius_enclosure`` -- so r_min <= its upper end;
+* **nearest** (:func:`prove_nearest`): the homotopy's minimum alone is a floating-point search (a failed or jumped
+  path could hide a nearer point), so every one of the seven enclosed cubics is shown, by an interval branch and
+  bound, to have no critical point of the distance (nor singular point) in the open ball of radius
+  (1 - ``NEAREST_REL_GAP``) times the certified lower end -- so r_min >= that radius.
+
+``certified`` is True only when both hold: r_min then lies in ``proven_interval`` (relative width ~1e-9).  When the
+exclusion does not finish (``NEAREST_MAX_BOXES``), ``nearest`` is reported as "float search" and ``certified`` is
+False.  The other per-cable radii are floating-point values.
 """
 
 from __future__ import annotations
@@ -632,8 +642,10 @@ class CCRadii:
     ``radii[i]`` distance to {tau_i = 0} for cable i of the CC, ``singular`` distance to {|J^-T| = 0},
     ``rmin`` their minimum and ``limiting`` what attains it (a cable index or 'singular'); ``nearest`` the point of
     the limiting surface nearest to the pose (world frame); ``points`` the nearest point of every surface;
-    ``failed_paths`` paths that did not finish (0 for a proven global minimum); ``certified`` the interval
-    certificate of the minimizing critical point (None when not run)."""
+    ``failed_paths`` paths that did not finish; ``certified``: r_min proven (its critical point certified and no
+    point of the seven surfaces nearer, see the module docstring; None when not run); ``radius_certificate`` says
+    which part is proven: {"critical_point": "certified" | "not certified", "nearest": "proven" | "float search",
+    "radius_enclosure", "proven_interval", "proven_lower_bound", "homotopy_failed_paths"}."""
 
     cables: tuple
     position: np.ndarray
@@ -649,6 +661,7 @@ class CCRadii:
     seconds: float
     certified: bool | None = None
     certificate: dict | None = field(default=None, compare=False)
+    radius_certificate: dict | None = field(default=None, compare=False)
 
     def radii_by_number(self) -> dict:
         """{"<cable number>": r, ..., "singular": r} (the JSON contract)."""
@@ -661,7 +674,8 @@ class CCRadii:
                          "tensions": self.tensions, "radii": self.radii_by_number(), "rmin": self.rmin,
                          "limiting": self.limiting + 1 if isinstance(self.limiting, (int, np.integer)) else self.limiting,
                          "nearest": self.nearest, "failed_paths": self.failed_paths, "certified": self.certified,
-                         "certificate": self.certificate, "seconds": self.seconds})
+                         "radius_certificate": self.radius_certificate, "certificate": self.certificate,
+                         "seconds": self.seconds})
 
 
 def cc_radii_many(robot, requests, scale: float | None = None, seed: int = 0, certify: bool = False
@@ -800,7 +814,7 @@ def certify_radius(robot, position, rotation, cables, column, scale, point) -> d
 
     Returns {"proven": bool, "radius_enclosure": [lo, hi] or None, "reason": str or None}: proven means there is
     exactly one critical point of the distance to the TRUE surface in a tiny box around ``point`` and its
-    distance to the pose lies in the enclosure.  (That no other critical point is nearer rests on the homotopy.)"""
+    distance to the pose lies in the enclosure.  (That no other point is nearer: :func:`prove_nearest`.)"""
     from flint import arb
 
     from .intervals import krawczyk_certify, lower, upper
@@ -824,13 +838,189 @@ def certify_radius(robot, position, rotation, cables, column, scale, point) -> d
     return {"proven": True, "radius_enclosure": [lower(r), upper(r)], "reason": None}
 
 
+# ---------------------------------------------------------------------------------------------------------------
+# proof that no point of the seven surfaces is nearer (interval exclusion of the distance's critical points)
+
+NEAREST_REL_GAP = 1e-9  # the proven lower bound is (1 - this) times the lower end of the certified distance
+NEAREST_MAX_BOXES = 200_000  # boxes per cubic before giving up (then nearest-ness stays a float search)
+
+
+class _Poly:
+    """A real polynomial in y1, y2, y3 with interval coefficients: exponent tuples -> (lo, hi), outward rounded."""
+
+    def __init__(self, terms: dict):
+        self.terms = {e: c for e, c in terms.items() if not (c[0] == 0.0 and c[1] == 0.0)}
+
+    @staticmethod
+    def _add(a, b):
+        from .interval_boxes import down, up
+
+        return (float(down(a[0] + b[0])), float(up(a[1] + b[1])))
+
+    @classmethod
+    def from_bounds(cls, lo, hi):
+        return cls({e: (float(l), float(h)) for e, l, h in zip(MONOMIALS, lo, hi)})
+
+    def deriv(self, v: int) -> "_Poly":
+        from .interval_boxes import down, up
+
+        out = {}
+        for e, (lo, hi) in self.terms.items():
+            if e[v]:
+                f = list(e)
+                f[v] -= 1
+                k = float(e[v])
+                out[tuple(f)] = (float(down(lo * k)), float(up(hi * k)))
+        return _Poly(out)
+
+    def times_var(self, v: int) -> "_Poly":
+        out = {}
+        for e, c in self.terms.items():
+            f = list(e)
+            f[v] += 1
+            out[tuple(f)] = c
+        return _Poly(out)
+
+    def __sub__(self, o: "_Poly") -> "_Poly":
+        out = dict(self.terms)
+        for e, (lo, hi) in o.terms.items():
+            out[e] = self._add(out[e], (-hi, -lo)) if e in out else (-hi, -lo)
+        return _Poly(out)
+
+    def matrix_row(self):
+        """(lo, hi) coefficient rows over MONOMIALS (every polynomial here has degree <= 3)."""
+        lo, hi = np.zeros(len(MONOMIALS)), np.zeros(len(MONOMIALS))
+        for e, (l, h) in self.terms.items():
+            k = _MONO_INDEX[e]
+            lo[k], hi[k] = l, h
+        return lo, hi
+
+
+_MONO_INDEX = {e: k for k, e in enumerate(MONOMIALS)}
+_MONO = np.array(MONOMIALS)
+
+
+def _monomials(lo, hi):
+    """Enclosures of the 20 monomials over n boxes (lo, hi of shape (n, 3)): an Interval of shape (n, 20)."""
+    from .interval_boxes import Interval
+
+    n = len(lo)
+    plo, phi = np.ones((n, 3, 4)), np.ones((n, 3, 4))
+    Y = Interval(lo, hi)
+    Y2 = Y.sqr()
+    Y3 = Y2 * Y
+    for p, Yp in ((1, Y), (2, Y2), (3, Y3)):
+        plo[:, :, p], phi[:, :, p] = Yp.lo, Yp.hi
+    parts = [Interval(plo[:, v, _MONO[:, v]], phi[:, v, _MONO[:, v]]) for v in range(3)]
+    out = parts[0]
+    for v in (1, 2):
+        exact = _MONO[:, v] == 0  # factor 1: no widening
+        prod = out * parts[v]
+        out = Interval(np.where(exact, out.lo, prod.lo), np.where(exact, out.hi, prod.hi))
+    return out
+
+
+def exclude_critical_points(coef_lo, coef_hi, radius: float, max_boxes: int | None = None):
+    """Interval proof that the cubic P (coefficients in [coef_lo, coef_hi], MONOMIALS order, any cubic of the box)
+    has no point of C = {P(y) = 0, y x grad P(y) = 0} with |y| < ``radius``.  Returns (proven, boxes).
+
+    Why this bounds the distance: the distance from 0 to the closed set {P = 0} is attained at some y*; where
+    grad P(y*) != 0 the surface is smooth there and y* is parallel to grad P(y*) (Lagrange), otherwise y* is a
+    singular point; either way y* is in C (and y* != 0 when P(0) != 0).  So C empty in the open ball means
+    dist(0, {P = 0}) >= ``radius``.  Branch and bound over the cube [-radius, radius]^3 in outward-rounded interval
+    arithmetic (:mod:`.interval_boxes`; the four functions and their gradients as interval coefficient matrices on
+    the monomials, products by :func:`.interval_boxes.mr_matmul`): a box is discarded when it misses the open ball,
+    or when the enclosure of P or of a component of y x grad P excludes 0 (each enclosure is the intersection of the
+    natural and the mean-value forms); other boxes are bisected along their widest side."""
+    from .interval_boxes import Interval, _midrad, mr_matmul, up
+
+    max_boxes = NEAREST_MAX_BOXES if max_boxes is None else max_boxes
+    P = _Poly.from_bounds(coef_lo, coef_hi)
+    grad = [P.deriv(v) for v in range(3)]
+    funcs = [P] + [grad[b].times_var(a) - grad[a].times_var(b) for a, b in ((0, 1), (0, 2), (1, 2))]
+    polys = funcs + [f.deriv(v) for v in range(3) for f in funcs]  # 4 functions, then d/dy_v of each
+    rows = [f.matrix_row() for f in polys]
+    Cm, Cr = _midrad(Interval(np.array([r[0] for r in rows]), np.array([r[1] for r in rows])))
+    CmT, CrT = np.ascontiguousarray(Cm.T), np.ascontiguousarray(Cr.T)
+    nf = len(funcs)
+    r2 = float(up(radius * radius))
+    lo = np.full((1, 3), -float(radius))
+    hi = np.full((1, 3), float(radius))
+    boxes = 0
+    while len(lo):
+        boxes += len(lo)
+        if boxes > max_boxes or np.max(hi - lo) < 1e-13 * radius:
+            return False, boxes
+        c = 0.5 * (lo + hi)
+        MY = _monomials(lo, hi)
+        Mm, Mr = _midrad(MY)
+        vals = mr_matmul(Mm, Mr, CmT, CrT)  # (n, 16): the functions and their derivatives over the boxes
+        Mcm, Mcr = _midrad(_monomials(c, c))
+        fc = mr_matmul(Mcm, Mcr, CmT[:, :nf], CrT[:, :nf])
+        mv = fc
+        for v in range(3):
+            dv = Interval(lo[:, v], hi[:, v]) - c[:, v]
+            mv = mv + vals[:, nf * (v + 1):nf * (v + 2)] * Interval(dv.lo[:, None], dv.hi[:, None])
+        enc = vals[:, :nf].intersect(mv)
+        sq = (MY[:, _MONO_INDEX[(2, 0, 0)]] + MY[:, _MONO_INDEX[(0, 2, 0)]]) + MY[:, _MONO_INDEX[(0, 0, 2)]]
+        keep = (sq.lo < r2) & ~np.any((enc.lo > 0) | (enc.hi < 0), axis=1)
+        lo, hi = lo[keep], hi[keep]
+        if not len(lo):
+            break
+        k = np.argmax(hi - lo, axis=1)
+        idx = np.arange(len(lo))
+        mid = 0.5 * (lo[idx, k] + hi[idx, k])
+        hi1, lo2 = hi.copy(), lo.copy()
+        hi1[idx, k] = mid
+        lo2[idx, k] = mid
+        lo, hi = np.vstack([lo, lo2]), np.vstack([hi1, hi])
+    return True, boxes
+
+
+def prove_nearest(robot, position, rotation, cables, scale, radius, max_boxes: int | None = None) -> dict:
+    """Interval proof that none of the seven surfaces of the 6-cable CC ``cables`` ({|M_i| = 0} for each cable and
+    {|M| = 0}) comes within ``radius`` (world units) of the pose: :func:`exclude_critical_points` on each rigorously
+    enclosed cubic (:func:`arb_cubic`).  Returns {"proven", "lower_bound" (a double <= the proven radius), "boxes",
+    "reason"}."""
+    from .intervals import lower, upper
+
+    from .interval_boxes import down
+
+    rs = float(radius) / float(scale)
+    lower_bound = float(down(rs * float(scale)))
+    total = 0
+    for column in [None] + list(range(6)):
+        cb = arb_cubic(robot, position, rotation, cables, column, scale)
+        ok, nb_ = exclude_critical_points(np.array([lower(v) for v in cb]), np.array([upper(v) for v in cb]), rs,
+                                          max_boxes)
+        total += nb_
+        if not ok:
+            what = "the singularity surface" if column is None else f"the surface tau_{cables[column] + 1} = 0"
+            return {"proven": False, "lower_bound": None, "boxes": total,
+                    "reason": f"interval exclusion inconclusive for {what} within {radius:.10g} ({nb_} boxes)"}
+    return {"proven": True, "lower_bound": max(lower_bound, 0.0), "boxes": total, "reason": None}
+
+
 def _with_certificate(res: CCRadii, robot, h: float) -> CCRadii:
+    """Certify the minimizing critical point (Krawczyk) and prove that it is the nearest (interval exclusion, within a
+    relative ``NEAREST_REL_GAP`` of the certified distance); ``certified`` when both are proven."""
     from dataclasses import replace
 
     which = res.limiting
     column = None if which == "singular" else res.cables.index(which)
     cert = certify_radius(robot, res.position, res.rotation, res.cables, column, h, res.nearest)
-    cert["method"] = ("Krawczyk (arb) on the Lagrange system of the enclosed cubic at the minimizing critical point; "
-                      "global minimality from the complete homotopy solve")
+    base = cert["radius_enclosure"][0] if cert["proven"] else float(res.rmin)
+    near = prove_nearest(robot, res.position, res.rotation, res.cables, h, (1.0 - NEAREST_REL_GAP) * base)
+    cert["method"] = ("critical point: Krawczyk (arb) on the Lagrange system of the enclosed cubic; nearest: interval "
+                      "exclusion of every critical point of the distance to the seven enclosed cubics within the "
+                      "proven lower bound")
     cert["failed_paths"] = res.failed_paths
-    return replace(res, certified=bool(cert["proven"] and res.failed_paths == 0), certificate=cert)
+    cert["nearest_proof"] = near
+    rc = {"critical_point": "certified" if cert["proven"] else "not certified",
+          "nearest": "proven" if near["proven"] else "float search",
+          "radius_enclosure": cert["radius_enclosure"],
+          "proven_interval": ([near["lower_bound"], cert["radius_enclosure"][1]]
+                              if near["proven"] and cert["proven"] else None),
+          "proven_lower_bound": near["lower_bound"],
+          "homotopy_failed_paths": res.failed_paths}
+    return replace(res, certified=bool(cert["proven"] and near["proven"]), certificate=cert, radius_certificate=rc)

@@ -18,6 +18,15 @@ e0 = 1), which contains every rotation of angle <= R; on each box the tensions a
 problem of the CC's cables with the lengths of the pose (:func:`.dgp.solve_taut_set`; cables outside the CC are
 slack by control and left out) gives every admissible equilibrium with exactly S taut; the nearest one is reported.
 It is run when the exclusion fails (to decide) or on request (``nearest=True``).
+
+**What the result proves** (``safe``, ``method``, ``status``):
+
+* ``safe = True``, method "interval exclusion proof": proven, no sub-configuration equilibrium within the radius.
+* ``safe = False``, method "homotopy search": a verified counterexample -- an equilibrium of a sub-configuration
+  certified by its interval certificate (:mod:`.certify`: existence, uniqueness, positive tensions, slack cables)
+  whose distance to the pose, bounded from above in ball arithmetic over the certified box, is <= the radius.
+* ``safe = None`` otherwise: the homotopy search found no sub-configuration equilibrium within the radius (not a
+  proof: the homotopy is a floating-point search), or found one it could not verify; ``status`` says which.
 """
 
 from __future__ import annotations
@@ -32,7 +41,11 @@ from .configurations import check_pose, configuration_tensions
 from .errors import CdprInputError
 from .jsonable import jsonable
 
-__all__ = ["SafetyResult", "pose_distance", "exclusion_proof", "exclusion_radius", "sub_configuration_equilibria", "safety"]
+__all__ = ["SafetyResult", "pose_distance", "exclusion_proof", "exclusion_radius", "sub_configuration_equilibria", "safety",
+           "distance_upper_bound", "PROOF", "SEARCH"]
+
+PROOF = "interval exclusion proof"
+SEARCH = "homotopy search"
 
 
 def pose_distance(G0, R0, G1, R1) -> tuple[float, float, float]:
@@ -183,14 +196,47 @@ def sub_configuration_equilibria(robot, position, cables, rotation=None, sizes=r
     return found, subproblems
 
 
+def distance_upper_bound(G0, R0, certificate, com) -> float | None:
+    """An upper bound (ball arithmetic) of the pose distance d of :func:`pose_distance` from (G0, R0) to every pose in
+    the certified box of a DGP certificate (``position_lower/upper``: platform origin p, ``rotation_lower/upper``: R;
+    G = p + R com), or None without enclosures.  The angle theta of R0^T R is bounded by
+    theta = 2 asin(|R - R0|_F / (2 sqrt 2)) (for rotations |R - R0|_F^2 = 4 (1 - cos theta) = 8 sin^2(theta / 2))."""
+    from flint import arb
+
+    from .intervals import upper
+
+    if certificate is None or not getattr(certificate, "exists_unique", False):
+        return None
+    plo, phi = np.asarray(certificate.position_lower, float), np.asarray(certificate.position_upper, float)
+    Rlo, Rhi = np.asarray(certificate.rotation_lower, float), np.asarray(certificate.rotation_upper, float)
+    if not (np.all(np.isfinite(plo)) and np.all(np.isfinite(Rlo))):
+        return None
+
+    def ball(lo, hi):
+        return arb(0.5 * (float(lo) + float(hi)), 0.5 * (float(hi) - float(lo))) + arb(0, abs(float(hi)) * 1e-15 + 1e-300)
+
+    p = [ball(plo[k], phi[k]) for k in range(3)]
+    R = [[ball(Rlo[i, j], Rhi[i, j]) for j in range(3)] for i in range(3)]
+    G1 = [p[i] + sum((R[i][j] * float(com[j]) for j in range(3)), arb(0)) for i in range(3)]
+    dp2 = sum(((G1[k] - float(G0[k])) ** 2 for k in range(3)), arb(0))
+    fro2 = sum(((R[i][j] - float(R0[i, j])) ** 2 for i in range(3) for j in range(3)), arb(0))
+    s_hi = upper(fro2.sqrt() / (2 * arb(2).sqrt()))
+    if not s_hi < 1:
+        return None
+    theta = 2 * arb(s_hi).asin()
+    return upper((dp2 + theta * theta).sqrt())
+
+
 @dataclass(frozen=True)
 class SafetyResult:
     """Second criterion for one 6-cable CC (cables 0-based; 1-based in ``to_dict``).
 
-    ``safe``: no sub-configuration equilibrium within ``radius`` (True), one found (False), undecided (None);
-    ``method``: 'interval exclusion' or 'DGP'; ``boxes`` of the exclusion; ``nearest``: the nearest
-    sub-configuration equilibrium found by the DGP search (None if not run or none found);
-    ``subproblems`` solved by the DGP search."""
+    ``safe``: True only when proven (no sub-configuration equilibrium within ``radius``: interval exclusion), False
+    only with a verified counterexample, None otherwise (see the module docstring); ``method``: the method that
+    decided, :data:`PROOF` ("interval exclusion proof") or :data:`SEARCH` ("homotopy search"); ``status``: the
+    result in words; ``boxes`` of the exclusion; ``nearest``: the nearest sub-configuration equilibrium found by the
+    DGP search (None if not run or none found), with ``verified`` and ``distance_upper_bound``; ``subproblems``
+    solved by the DGP search."""
 
     cables: tuple
     position: np.ndarray
@@ -202,17 +248,26 @@ class SafetyResult:
     subproblems: int
     failed_paths: int
     seconds: float
+    status: str = ""
+    counterexample_verified: bool | None = None
+
+    @property
+    def proven(self) -> bool:
+        """The answer is proven (safe by the exclusion, or unsafe with a verified counterexample)."""
+        return self.safe is not None
 
     def to_dict(self) -> dict:
         return jsonable({"cables": [c + 1 for c in self.cables], "radius": self.radius, "safe": self.safe,
-                         "method": self.method, "boxes": self.boxes, "nearest": self.nearest,
-                         "subproblems": self.subproblems, "failed_paths": self.failed_paths, "seconds": self.seconds})
+                         "method": self.method, "proven": self.proven, "status": self.status,
+                         "counterexample_verified": self.counterexample_verified, "boxes": self.boxes,
+                         "nearest": self.nearest, "subproblems": self.subproblems, "failed_paths": self.failed_paths,
+                         "seconds": self.seconds})
 
 
 def safety(robot, position, cables, rotation=None, radius: float = 0.03, nearest: bool = False, seed: int = 0,
            max_boxes: int = 20000, progress=None) -> SafetyResult:
     """Seed 002 Sec. II-C for the 6-cable CC ``cables`` (0-based) at the pose: interval exclusion first; the DGP
-    search when the exclusion fails or ``nearest`` is asked for."""
+    search when the exclusion fails or ``nearest`` is asked for (see the module docstring for what is proven)."""
     t0 = time.perf_counter()
     if not (np.isfinite(radius) and radius > 0):
         raise CdprInputError("--ball", f"expected a radius > 0, got {radius}")
@@ -224,7 +279,10 @@ def safety(robot, position, cables, rotation=None, radius: float = 0.03, nearest
         raise CdprInputError("configuration", f"cables {[c + 1 for c in cables]} are not a valid CC at the pose")
     proven, boxes, _ = exclusion_proof(robot, G, cables, R0, radius, max_boxes)
     safe = True if proven else None
-    method = "interval exclusion" if proven else "DGP"
+    method = PROOF if proven else SEARCH
+    status = (f"proven safe: no sub-configuration equilibrium within {radius:g} ({PROOF}, {boxes} boxes)"
+              if proven else "")
+    verified = None
     near, nsub, failed = None, 0, 0
     if nearest or not proven:
         found, subs = sub_configuration_equilibria(robot, G, cables, R0, seed=seed, progress=progress)
@@ -232,11 +290,31 @@ def safety(robot, position, cables, rotation=None, radius: float = 0.03, nearest
         failed = sum(getattr(s, "failed_paths", 0) for s in subs)
         if found:
             d, dp, th, S, s = found[0]
+            bound = distance_upper_bound(G, R0, s.certificate, robot.com) if s.certified else None
             near = {"cables": list(S), "distance": d, "position_distance": dp, "rotation_angle": th,
                     "position": s.position + s.rotation @ robot.com, "angles": s.angles,
-                    "tensions": [float(s.tensions[i]) for i in range(len(cables))], "stable": s.stable}
+                    "tensions": [float(s.tensions[i]) for i in range(len(cables))], "stable": s.stable,
+                    "certified": bool(s.certified), "distance_upper_bound": bound}
         if not proven:
-            safe = not (found and found[0][0] <= radius)
-            if safe and failed:
-                safe = None  # a failed path may hide an equilibrium
-    return SafetyResult(cables, G, float(radius), safe, method, boxes, near, nsub, failed, time.perf_counter() - t0)
+            within = [f for f in found if f[0] <= radius]
+            if within:
+                # a verified counterexample: any equilibrium within the radius that is certified, with its distance
+                # bounded by the radius over the certified box
+                for d, dp, th, S, s in within:
+                    bound = distance_upper_bound(G, R0, s.certificate, robot.com) if s.certified else None
+                    if bound is not None and bound <= radius:
+                        verified = True
+                        safe = False
+                        status = (f"unsafe: verified counterexample, cables {list(S)} in equilibrium at distance "
+                                  f"<= {bound:.6g} (certified; {SEARCH})")
+                        break
+                else:
+                    verified = False
+                    status = (f"not proven: the {SEARCH} found a sub-configuration equilibrium at distance "
+                              f"{within[0][0]:.6g} <= {radius:g} that its certificate does not verify")
+            else:
+                status = (f"not proven: no sub-configuration equilibrium found within {radius:g} by the {SEARCH} "
+                          f"(a floating-point search, not a proof; the exclusion proof failed)"
+                          + (f"; {failed} failed path(s)" if failed else ""))
+    return SafetyResult(cables, G, float(radius), safe, method, boxes, near, nsub, failed, time.perf_counter() - t0,
+                        status, verified)

@@ -7,16 +7,22 @@
 
 At a pose (position of the centre of mass G, orientation R = Rz Ry Rx of ``--angles``): every valid cable
 configuration (:mod:`.configurations`), and for those with 6 cables the radii of the first criterion
-(:mod:`.cc_radii`, certified), the second criterion within ``--ball R`` (:mod:`.cc_safety`) and the uncertainty
+(:mod:`.cc_radii`: r_min's critical point certified by Krawczyk and its nearest-ness proven by interval exclusion,
+each reported separately in ``radius_certificate``), the second criterion within ``--ball R`` (:mod:`.cc_safety`:
+``safe_nearby`` true only from the interval exclusion proof, false only with a verified counterexample, null when
+only the homotopy search ran; ``second_criterion.method`` and ``status`` say which) and the uncertainty
 criterion for +-DA on the exit points, +-DB on the platform anchors and +-DRHO on the cable lengths
 (:mod:`.cc_uncertainty`).  Along a trajectory (expressions of t) or over a surface (of u, v): the 6-cable
 configurations valid over the whole path with their index (:mod:`.cc_paths`).  An expression that starts with '-'
 must be written with a leading space or in parentheses (argparse would take it for an option).
 
 JSON: ``{"robot", "mode", "position", "angles", "configurations": [{"cables", "tensions", "valid", "radii":
-{"<cable number>": r, ..., "singular": r}, "rmin", "limiting", "certified", "safe_nearby", "nearest_sub_configuration",
-"robust_to_uncertainty", "counterexample", "tension_bounds"}], "seconds"}``; ``null`` where a criterion was not
-asked for or does not apply (configurations with fewer than 6 cables).
+{"<cable number>": r, ..., "singular": r}, "rmin", "limiting", "certified", "radius_certificate", "safe_nearby",
+"second_criterion", "nearest_sub_configuration", "robust_to_uncertainty", "counterexample", "tension_bounds"}],
+"seconds"}``; ``null`` where a criterion was not asked for or does not apply (configurations with fewer than 6
+cables).  ``certified`` (r_min) is true only when both parts of ``radius_certificate`` are proven:
+``{"critical_point": "certified" | "not certified", "nearest": "proven" | "float search", "proven_interval": [lo,
+hi] | null, ...}``; the per-cable ``radii`` other than the limiting one are floating-point values.
 """
 
 from __future__ import annotations
@@ -81,11 +87,14 @@ def _entry(cc, radii=None, safety=None, unc=None) -> dict:
         d["rmin"] = float(radii.rmin) if cc.valid else 0.0
         d["limiting"] = radii.limiting + 1 if not isinstance(radii.limiting, str) else radii.limiting
         d["certified"] = radii.certified
+        d["radius_certificate"] = radii.radius_certificate
         d["nearest_point"] = radii.nearest
     if safety is not None:
         d["safe_nearby"] = safety.safe
         d["nearest_sub_configuration"] = safety.nearest
-        d["second_criterion"] = {"radius": safety.radius, "method": safety.method, "boxes": safety.boxes}
+        d["second_criterion"] = {"radius": safety.radius, "method": safety.method, "proven": safety.proven,
+                                 "status": safety.status, "counterexample_verified": safety.counterexample_verified,
+                                 "boxes": safety.boxes, "failed_paths": safety.failed_paths}
     if unc is not None:
         d["robust_to_uncertainty"] = unc.robust
         d["counterexample"] = unc.counterexample
@@ -160,6 +169,28 @@ def _path(args, robot, R) -> tuple[list, dict]:
     return entries, {"mode": "surface" if surface else "trajectory", "path": spec.to_dict()}
 
 
+def _radius_cell(e) -> str:
+    """'yes' (critical point certified and nearest proven), 'critical point' (certified, nearest-ness a float
+    search), 'no', or '-'."""
+    rc = e.get("radius_certificate")
+    if rc is None:
+        return "-"
+    if e["certified"]:
+        return "yes"
+    return "critical point" if rc["critical_point"] == "certified" else "no"
+
+
+def _safe_cell(e) -> str:
+    sc = e.get("second_criterion")
+    if sc is None:
+        return "-"
+    if e["safe_nearby"] is True:
+        return "yes (proof)"
+    if e["safe_nearby"] is False:
+        return "no (verified)"
+    return "not proven"
+
+
 def _table(entries, head) -> str:
     from .tables import format_table
 
@@ -170,15 +201,26 @@ def _table(entries, head) -> str:
     for k, e in enumerate(entries):
         rmin = "-" if e["rmin"] is None else f"{e['rmin']:.10g}" + (f" ({e['limiting']})" if e["limiting"] else "")
         rows.append([str(k + 1), str(e["cables"]), "(" + ", ".join(f"{t:.4f}" for t in e["tensions"]) + ")",
-                     "yes" if e["valid"] else "no", rmin, fmt(e["certified"]), fmt(e["safe_nearby"]),
+                     "yes" if e["valid"] else "no", rmin, _radius_cell(e), _safe_cell(e),
                      fmt(e["robust_to_uncertainty"])])
     headers = ["#", "cables", "tensions" + (" (start)" if head["mode"] != "pose" else ""), "valid",
-               "r_min (limiting)" if head["mode"] == "pose" else "index (limiting)", "certified", "safe nearby",
+               "r_min (limiting)" if head["mode"] == "pose" else "index (limiting)", "r_min certified", "safe nearby",
                "robust"]
     lines = [format_table(headers, rows)] if rows else ["no valid cable configuration"]
     for k, e in enumerate(entries):
+        rc = e.get("radius_certificate")
+        if rc is not None:
+            cp = ("critical point certified (Krawczyk), distance in [{:.12g}, {:.12g}]".format(*rc["radius_enclosure"])
+                  if rc["critical_point"] == "certified" else "critical point not certified")
+            near = (f"nearest proven (interval exclusion: no point of the 7 surfaces within {rc['proven_lower_bound']:.12g})"
+                    if rc["nearest"] == "proven" else "nearest by a floating-point search (homotopy), not proven")
+            lines.append(f"#{k + 1} r_min: {cp}; {near}")
         if e["radii"]:
-            lines.append(f"#{k + 1} radii: " + ", ".join(f"{c}: {r:.10g}" for c, r in e["radii"].items()))
+            lines.append(f"#{k + 1} radii{' (floating point)' if rc is not None else ''}: "
+                         + ", ".join(f"{c}: {r:.10g}" for c, r in e["radii"].items()))
+        sc = e.get("second_criterion")
+        if sc is not None:
+            lines.append(f"#{k + 1} second criterion within {sc['radius']:g}: {sc['status']}")
         if e.get("nearest_sub_configuration"):
             n = e["nearest_sub_configuration"]
             lines.append(f"#{k + 1} nearest sub-configuration equilibrium: cables {n['cables']} at distance "

@@ -36,7 +36,7 @@ def test_pose_distance():
 @pytest.mark.parametrize("position,cc", [(p, c) for p, ccs in CCS.items() for c in ccs[:2]])
 def test_none_within_003(robot, position, cc):
     res = safety(robot, position, [c - 1 for c in cc], radius=0.03)
-    assert res.safe is True and res.method == "interval exclusion" and res.nearest is None
+    assert res.safe is True and res.method == "interval exclusion proof" and res.nearest is None
 
 
 @pytest.mark.slow
