@@ -2,13 +2,15 @@
 
     cdpr igp ROBOT --orientation PHI_X PHI_Y PHI_Z [--degrees] [--exact] [--json]
     cdpr igp ROBOT --position X Y Z [--all] [--json]
-    cdpr dgp ROBOT [--lengths L1 .. Ln] [--jobs N] [--json]
+    cdpr dgp ROBOT [--lengths L1 .. Ln] [--jobs N] [--mpmath-retry] [--json]
     cdpr plot ROBOT [--lengths L1 .. Ln] [--out FILE.png|.svg] [--jobs N]     (see cli_plot.py)
     cdpr cc ROBOT --position X Y Z [--angles ..] [--configuration ..] [--ball R] [--uncertainty DA DB DRHO] [--json]
                                                                                (see cli_cc.py)
     cdpr crosscheck ROBOT [--lengths L1 .. Ln] [--taut C1 .. Cm] [--json]     (see cli_crosscheck.py)
 
-Exit status: 0 on success, 2 on bad input (one line on stderr naming the field and the problem).
+Exit status: 0 on success, 2 on bad input (one line on stderr naming the field and the problem), 3 when the
+result is incomplete (``dgp``: some subproblem has failed paths, so equilibria may be missing there; the
+subproblems are named on stderr).
 """
 
 from __future__ import annotations
@@ -21,6 +23,8 @@ import sys
 import numpy as np
 
 from .errors import CdprInputError
+
+INCOMPLETE = 3  # exit status: a result that could not be completed (failed paths), said on stderr
 
 
 class _Parser(argparse.ArgumentParser):
@@ -61,6 +65,9 @@ def build_parser() -> argparse.ArgumentParser:
     dgp.add_argument("--lengths", nargs="+", type=_finite("--lengths"), metavar="L",
                      help="cable lengths rho_1 .. rho_n (default: the robot file's)")
     dgp.add_argument("--jobs", type=int, default=None, help="parallel threads (default: all cores)")
+    dgp.add_argument("--mpmath-retry", action="store_true",
+                     help="track up to 4 paths per subproblem that fail in double precision again in arbitrary "
+                          "precision (slow: seconds to minutes per path)")
     dgp.add_argument("--json", action="store_true", help="print JSON instead of a table")
     from . import cli_plot
 
@@ -145,17 +152,31 @@ def _run_dgp(args) -> int:
         raise CdprInputError("--jobs", f"expected a number >= 1, got {args.jobs}")
 
     def progress(sub, done, total):
+        o = sub.outcomes
         what = f"skipped ({sub.skipped})" if sub.skipped else \
-            f"{sub.paths} paths, {sub.real} real, {sub.admissible} admissible, {sub.failed_paths} failed" + \
-            (f", {sub.diverging} diverging" if sub.diverging else "")
+            (f"{sub.paths} paths ({o['regular']} regular, {o['singular']} singular, {o['at_infinity']} at infinity, "
+             f"{o['failed']} failed), {sub.real} real, {sub.admissible} admissible")
         print(f"[{done}/{total}] taut {list(sub.taut)}: {what}, {sub.seconds:.2f} s", file=sys.stderr, flush=True)
 
-    result = dgp(robot, lengths, jobs=args.jobs, progress=progress)
+    options = None
+    if args.mpmath_retry:
+        from dataclasses import replace
+
+        from .dgp import default_options
+
+        options = replace(default_options(), retry_mpmath=True)
+    result = dgp(robot, lengths, jobs=args.jobs, progress=progress, options=options)
     if args.json:
         print(json.dumps(result.to_dict(), indent=2))
     else:
         print(f"{robot.name}: DGP, lengths {', '.join(f'{v:g}' for v in lengths)}")
         print(dgp_table(result, robot.n))
+    if not result.complete:
+        print(f"cdpr: incomplete: {len(result.incomplete)} subproblem(s) have failed paths, so equilibria may be "
+              f"missing there: " + " ".join(str(list(s.taut)) for s in result.incomplete)
+              + " (exit status 3; --mpmath-retry tracks up to 4 failed paths per subproblem in arbitrary precision)",
+              file=sys.stderr)
+        return INCOMPLETE
     return 0
 
 

@@ -14,15 +14,19 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   p = c + L Rw^T p^, R = Rw^T R^, lam = Q lam^ / L, tau_i = lam_i rho_i.
   Tracking uses the compiled tracker (:mod:`.homotopy.compiled` with the numba evaluators and structured linear
   solve of :mod:`.dgp_kernels`; numpy evaluators :class:`FastTautSystem` for the endgame checks and retries;
-  predictor tolerance 1e-4); a path failing in
-  the endgame zone (|t| <= 0.1) beyond 1000 robot sizes (|x| > ``DIVERGED_NORM`` in normalized coordinates,
-  while every admissible equilibrium has |x| < ~10) is counted as diverging to a solution at infinity (special
-  geometries, e.g. coplanar base and platform, have some), not as failed.  Any other suspect path (failed, or
-  ending on another path's endpoint) is re-tracked by the engine in projective coordinates along the same
-  parameter path with tightened steps.  If failed paths remain, the subproblem is re-run once
-  with a random gamma and another seed, where paths that fail again are also tracked in arbitrary precision
-  (mpmath, 30 digits, at most ``MP_RETRY_PATHS`` = 4 paths), and the run with fewer failures is kept; remaining
-  failures are reported (``failed_paths``), never hidden.
+  predictor tolerance 1e-4).  No norm decides whether a path goes to infinity: the endgame of every path that
+  does not finish as a regular point runs in a random chart of projective space (all unknowns, tensions
+  included, homogenized; :mod:`.homotopy.endgame`), where a path is ``at_infinity`` only when the homogenizing
+  coordinate goes to zero (with its order and winding number), and a finite solution is returned however large
+  its coordinates or tensions.  Any suspect path (failed, or ending on another path's endpoint) is re-tracked
+  by the engine in projective coordinates along the same parameter path with tightened steps.  If failed paths
+  remain, the subproblem is re-run once with a random gamma and another seed, and the run with fewer failures
+  is kept; with ``retry_mpmath`` in the options, paths still failed are also tracked in arbitrary precision
+  (mpmath, 30 digits, at most ``MP_RETRY_PATHS`` = 4 paths per run: seconds to minutes per path, so off by
+  default).  Every path ends with one outcome (``regular``, ``singular``, ``at_infinity``,
+  ``failed`` with its reason), counted per subproblem (``outcomes``, ``failures``); a subproblem is
+  ``complete`` when no path failed and its regular, singular and at-infinity endpoints account for the generic
+  count (paths ending on one regular point are failures, ``path_jumping``: a solution is then missing).
 
 **Pruning** (seed 000 Sec. 4.1, recorded as the ``skipped`` reason): with D_ij = |A_i - A_j| and
 d_ij = |b_i' - b_j'|, every pair of cables needs D_ij <= rho_i + rho_j + d_ij (B_i and B_j lie within
@@ -51,13 +55,14 @@ import itertools
 import os
 import time
 from concurrent.futures import ThreadPoolExecutor, as_completed
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
 from .dgp_equations import decode, taut_family
 from .dgp_one_cable import one_cable_equilibria
+from .homotopy.results import FAILURES, OUTCOMES, outcome_counts
 from .jsonable import jsonable
 from .pose import angles_from_matrix, rotation_taking
 from .stability import skew_stack, stability_classes
@@ -133,20 +138,35 @@ class DGPSolution:
 
 @dataclass(frozen=True)
 class DGPSubproblem:
+    """One taut set.  ``outcomes``: paths per outcome (regular, singular, at_infinity, failed; they add up to
+    ``paths``); ``failures``: failed paths per reason; ``complete``: every path has an outcome other than failed
+    and they account for the generic count (or the set is proven empty by pruning, or solved analytically)."""
+
     taut: tuple  # 1-based
     paths: int
-    finite: int
+    finite: int  # distinct finite solutions (regular endpoints, and singular ones counted once)
     real: int
     admissible: int
-    failed_paths: int
     seconds: float
     skipped: str | None = None
-    diverging: int = 0  # paths beyond 1000 robot sizes (or 1000 loads of tension) near t = 0: not followed
+    outcomes: dict = field(default_factory=lambda: dict.fromkeys(OUTCOMES, 0))
+    failures: dict = field(default_factory=dict)
+    complete: bool = True
+    generic_count: int | None = None
+
+    @property
+    def failed_paths(self) -> int:
+        return self.outcomes["failed"]
+
+    @property
+    def at_infinity(self) -> int:
+        return self.outcomes["at_infinity"]
 
     def to_dict(self) -> dict:
-        return {"taut": list(self.taut), "paths": self.paths, "finite": self.finite, "real": self.real,
-                "admissible": self.admissible, "failed_paths": self.failed_paths, "seconds": self.seconds,
-                "skipped": self.skipped, "diverging": self.diverging}
+        return {"taut": list(self.taut), "paths": self.paths, "outcomes": dict(self.outcomes),
+                "failures": dict(self.failures), "complete": self.complete, "generic_count": self.generic_count,
+                "finite": self.finite, "real": self.real, "admissible": self.admissible,
+                "failed_paths": self.failed_paths, "seconds": self.seconds, "skipped": self.skipped}
 
 
 @dataclass(frozen=True)
@@ -162,8 +182,26 @@ class DGPResult:
     def by_m(self, m: int) -> tuple:
         return tuple(s for s in self.solutions if len(s.taut) == m)
 
+    @property
+    def incomplete(self) -> tuple:
+        """The subproblems that are not complete (a failed path, or no stored generic set)."""
+        return tuple(s for s in self.subproblems if not s.complete)
+
+    @property
+    def complete(self) -> bool:
+        return not self.incomplete
+
+    def outcomes(self) -> dict:
+        """Paths per outcome over all subproblems."""
+        total = dict.fromkeys(OUTCOMES, 0)
+        for s in self.subproblems:
+            for k, v in s.outcomes.items():
+                total[k] += v
+        return total
+
     def to_dict(self) -> dict:
-        return {"solutions": [s.to_dict() for s in self.solutions],
+        return {"complete": self.complete, "incomplete": [list(s.taut) for s in self.incomplete],
+                "outcomes": self.outcomes(), "solutions": [s.to_dict() for s in self.solutions],
                 "subproblems": [s.to_dict() for s in self.subproblems], "seconds": self.seconds}
 
 
@@ -180,6 +218,11 @@ class FastTautSystem:
         self.n = 12 + m  # p, u, v, w, lam
         self.m = 7 * m + 6  # A_i, rho_i^2, b'_i, g', Q d
         self.neq = 12 + m
+
+    @property
+    def degrees(self) -> tuple:
+        """Every equation has degree 2 in x (as the sympy family says; tests/test_dgp_kernels.py checks it)."""
+        return (2,) * self.neq
 
     @property
     def family(self):
@@ -379,51 +422,47 @@ def _solve_one_cable(robot, rho, i):
         tau[i] = e.tension
         cls = _classify(robot, rho, [i], e.position, e.rotation, np.array([e.tension]))
         sols.append(DGPSolution((i + 1,), np.array(e.position), np.array(e.rotation), tau, cls))
-    sub = DGPSubproblem((i + 1,), candidates, candidates, candidates, len(sols), 0, time.perf_counter() - t0)
+    sub = DGPSubproblem((i + 1,), candidates, candidates, candidates, len(sols), time.perf_counter() - t0,
+                        outcomes={**dict.fromkeys(OUTCOMES, 0), "regular": candidates}, generic_count=candidates)
     return sub, sols
 
 
-MP_RETRY_PATHS = 4  # failed paths per subproblem tracked in arbitrary precision in the re-run
-DIVERGED_NORM = 1e3  # normalized coordinates: the robot has size 1, every admissible equilibrium has |x| < ~10
+MP_RETRY_PATHS = 4  # with retry_mpmath: failed paths per subproblem tracked in arbitrary precision
+PROJECTIVE_RETRIES = 2  # rounds of projective re-tracking of suspect paths (tightened 10x, then 100x)
 
 
-def _track(m, target, seed, gamma):
-    """Parameter homotopy from the stored generic set.  Returns (result, failed paths, diverging paths).  A path
-    beyond |x| > DIVERGED_NORM (a thousand robot sizes, or tensions of a thousand loads) that fails in the endgame
-    zone or ends on a singular point is counted as diverging (going to or near a solution at infinity, which
-    special geometries such as coplanar bases and platforms or nearly coincident anchors have), not as failed,
-    and is not re-tracked; every other suspect path (failed, or ending on the same point as another) is
-    re-tracked by the engine (projective coordinates, same parameter path, tightened steps)."""
+def default_options():
+    """The homotopy options of the DGP (module doc): predictor tolerance 1e-4, projective endgame, no in-place
+    double-precision retries (suspect paths are re-tracked in projective coordinates), no arbitrary precision."""
     from .homotopy.endgame import EndgameOptions, SolveOptions
-    from .homotopy.results import FAILURES, SINGULAR
     from .homotopy.tracker import TrackerOptions
+
+    return SolveOptions(tracker=TrackerOptions(predictor_tol=1e-4), endgame=EndgameOptions(projective=True),
+                        retry_tight=False, retry_mpmath=False, max_mpmath_paths=MP_RETRY_PATHS)
+
+
+def _track(m, target, seed, gamma, options=None):
+    """Parameter homotopy from the stored generic set (see the module doc).  Returns (result, failed paths)."""
     from .homotopy.solve import solve_parameter_homotopy
 
     p_gen, X_gen = _generic(m)
-
-    def diverging(p):
-        if not np.max(np.abs(p.endpoint)) > DIVERGED_NORM:
-            return False
-        return p.status == SINGULAR or (p.status in FAILURES and abs(p.t) <= 0.1 + 1e-12)
-
     # no in-place double retries: suspect paths are re-tracked in projective coordinates; in the re-run with a
     # new gamma (only when failures remain) paths still failed after that are tracked in arbitrary precision
     # (at most MP_RETRY_PATHS per subproblem: the mpmath tracker is pure Python, seconds to minutes per path).
     # Predictor tolerance 1e-4 (default 1e-5): paths from the stored generic set are nonsingular, and any two
-    # paths ending on one point are re-tracked with tightened steps (path jumping cannot go unnoticed)
-    # The Cauchy endgame gives up on paths beyond DIVERGED_NORM (counted as diverging below).
-    options = SolveOptions(tracker=TrackerOptions(predictor_tol=1e-4), endgame=EndgameOptions(give_up_norm=DIVERGED_NORM),
-                           retry_tight=False, retry_mpmath=gamma, max_mpmath_paths=MP_RETRY_PATHS)
+    # paths ending on one point are re-tracked with tightened steps (path jumping cannot go unnoticed).
+    # The endgame decides finite / at infinity in a projective chart (no norm threshold).
+    options = default_options() if options is None else options
     res = solve_parameter_homotopy(fast_family(m), p_gen, X_gen, target, seed=seed, gamma=gamma, options=options,
-                                   ignore=diverging)
-    failed = sum(1 for p in res.track.paths if p.status in FAILURES and not diverging(p))
-    return res, failed, sum(1 for p in res.track.paths if diverging(p))
+                                   retries=PROJECTIVE_RETRIES)
+    return res, sum(1 for p in res.track.paths if p.status in FAILURES)
 
 
-def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True):
+def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, options=None):
     """(DGPSubproblem, [DGPSolution]) for the 0-based taut set ``cables`` (pruning, tracking, filtering, and
-    with ``certify`` an interval certificate for every admissible solution, :mod:`.certify`)."""
-    sub, sols = _solve_taut_set(robot, rho, cables, seed)
+    with ``certify`` an interval certificate for every admissible solution, :mod:`.certify`); ``options``: the
+    homotopy's :class:`.homotopy.endgame.SolveOptions` (default: those of the module doc)."""
+    sub, sols = _solve_taut_set(robot, rho, cables, seed, options)
     if certify and sols:
         from .certify import certify_taut_root
 
@@ -432,26 +471,27 @@ def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True):
     return sub, sols
 
 
-def _solve_taut_set(robot, rho, cables, seed: int = 0):
+def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None):
     t0 = time.perf_counter()
     cables = tuple(cables)
     taut1 = tuple(c + 1 for c in cables)
     m = len(cables)
     reason = prune(robot, rho, cables)
-    if reason is not None:
-        return DGPSubproblem(taut1, 0, 0, 0, 0, 0, time.perf_counter() - t0, reason), []
+    if reason is not None:  # a proof that the set holds no equilibrium: complete
+        return DGPSubproblem(taut1, 0, 0, 0, 0, time.perf_counter() - t0, reason, generic_count=0), []
     if m == 1:
         return _solve_one_cable(robot, rho, cables[0])
     if not generic_path(m).exists():
-        return DGPSubproblem(taut1, 0, 0, 0, 0, 0, time.perf_counter() - t0,
-                             f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})"), []
+        return DGPSubproblem(taut1, 0, 0, 0, 0, time.perf_counter() - t0,
+                             f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})",
+                             complete=False), []
     fam = fast_family(m)
     target, c, L, Rw = _normalized(robot, rho, cables)
-    res, failed, diverging = _track(m, target, seed, gamma=False)
-    if failed:
-        res2, failed2, diverging2 = _track(m, target, seed + 7919, gamma=True)
+    res, failed = _track(m, target, seed, gamma=False, options=options)
+    if failed:  # another route (gamma trick), and the run with fewer failures is kept (each run is a whole account)
+        res2, failed2 = _track(m, target, seed + 7919, gamma=True, options=options)
         if failed2 < failed:
-            res, failed, diverging = res2, failed2, diverging2
+            res, failed = res2, failed2
     X = np.array([s.x for s in res.solutions]).reshape(-1, fam.n)
     finite = len(X)
     real = np.all(np.abs(X.imag) <= REAL_TOL * (1 + np.abs(X.real)), axis=1) if finite else np.zeros(0, bool)
@@ -485,8 +525,16 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0):
         tau[idx] = tau_S
         cls = _classify(robot, rho, cables, p, R, tau_S)
         sols.append(DGPSolution(taut1, p, R, tau, cls))
-    sub = DGPSubproblem(taut1, len(res.track.paths), finite, int(np.sum(real)), len(sols), failed,
-                        time.perf_counter() - t0, diverging=diverging)
+    paths = res.track.paths
+    outcomes = outcome_counts(paths)
+    failures = {}
+    for p in paths:
+        if p.status in FAILURES:
+            failures[p.status] = failures.get(p.status, 0) + 1
+    generic = len(_generic(m)[1])
+    complete = outcomes["failed"] == 0 and sum(outcomes.values()) == generic
+    sub = DGPSubproblem(taut1, len(paths), finite, int(np.sum(real)), len(sols), time.perf_counter() - t0,
+                        outcomes=outcomes, failures=failures, complete=complete, generic_count=generic)
     return sub, sols
 
 
@@ -534,12 +582,13 @@ def solve_each_taut_set(robot, lengths, max_m, sets, solve_one, progress=None):
 
 
 def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int = 6, seed: int = 0,
-        certify: bool = True) -> "DGPResult":
+        certify: bool = True, options=None) -> "DGPResult":
     """Every admissible equilibrium of ``robot`` with cable ``lengths`` (default: the robot's).
 
     Subproblems: every taut set of m = 1 .. min(n, 6, max_m) cables, solved by ``jobs`` threads (default
     ``os.cpu_count()``; 1 = one after the other; the compiled tracker releases the GIL, so they track in
-    parallel); ``progress(sub, done, total)`` is called in the calling thread after each finished subproblem; ``certify``: attach an interval certificate to every solution.
+    parallel); ``progress(sub, done, total)`` is called in the calling thread after each finished subproblem; ``certify``: attach an interval certificate to every solution;
+    ``options``: the homotopy's :class:`.homotopy.endgame.SolveOptions` (default: those of the module doc).
     """
     t0 = time.perf_counter()
     rho, sets = lengths_and_taut_sets(robot, lengths, max_m)
@@ -555,10 +604,10 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
         # threads: the compiled tracker releases the GIL, so subproblems track in parallel without the cost of
         # worker processes (start-up, pickling); the Python parts (endgame, filtering, certificates) interleave
         with ThreadPoolExecutor(max_workers=min(jobs, len(heavy))) as ex:
-            futs = {ex.submit(solve_taut_set, robot, rho, c, seed, certify): c
+            futs = {ex.submit(solve_taut_set, robot, rho, c, seed, certify, options): c
                     for c in sorted(heavy, key=lambda c: -len(c))}
             for c in light:
-                results[c] = solve_taut_set(robot, rho, c, seed, certify)
+                results[c] = solve_taut_set(robot, rho, c, seed, certify, options)
                 done += 1
                 if progress:
                     progress(results[c][0], done, len(sets))
@@ -569,7 +618,7 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
                     progress(results[futs[f]][0], done, len(sets))
     else:
         for c in sets:
-            results[c] = solve_taut_set(robot, rho, c, seed, certify)
+            results[c] = solve_taut_set(robot, rho, c, seed, certify, options)
             done += 1
             if progress:
                 progress(results[c][0], done, len(sets))
@@ -606,15 +655,26 @@ def dgp_table(result: DGPResult, n: int) -> str:
     ms = sorted({len(s.taut) for s in result.subproblems})
     counts = ", ".join(f"{len(result.by_m(m))} with {m} taut" for m in reversed(ms))
     skipped = sum(1 for s in result.subproblems if s.skipped)
-    failed = sum(s.failed_paths for s in result.subproblems)
     ncert = sum(1 for s in result.solutions if s.certified)
     lines.append(f"{len(result.solutions)} admissible equilibria ({counts}), {len(result.stable)} stable, "
-                 f"{ncert} certified; "
-                 f"{len(result.subproblems)} subproblems ({skipped} skipped), {failed} failed paths; "
+                 f"{ncert} certified; {len(result.subproblems)} subproblems ({skipped} skipped); "
                  f"{result.seconds:.2f} s")
     for s in result.subproblems:
         if s.skipped:
             lines.append(f"  skipped {list(s.taut)}: {s.skipped}")
         elif s.failed_paths:
-            lines.append(f"  {list(s.taut)}: {s.failed_paths} failed path(s) remain")
+            why = ", ".join(f"{v} {k.replace('_', ' ')}" for k, v in sorted(s.failures.items()))
+            lines.append(f"  incomplete {list(s.taut)}: {s.failed_paths} of {s.paths} paths failed ({why})")
+    lines.append(summary_line(result))
     return "\n".join(lines)
+
+
+def summary_line(result: DGPResult) -> str:
+    """Paths, finite, real, admissible, at infinity, singular, failed over all subproblems, and completeness."""
+    o = result.outcomes()
+    subs = result.subproblems
+    paths = sum(s.paths for s in subs)
+    verdict = "complete" if result.complete else f"INCOMPLETE: {len(result.incomplete)} subproblem(s) with failed paths"
+    return (f"paths {paths}: {o['regular']} regular, {o['singular']} singular, {o['at_infinity']} at infinity, "
+            f"{o['failed']} failed; {sum(s.finite for s in subs)} finite, {sum(s.real for s in subs)} real, "
+            f"{sum(s.admissible for s in subs)} admissible; {verdict}")

@@ -37,7 +37,7 @@ import numba as nb
 from numba import types as nbt
 
 __all__ = ["available", "track_kernel", "track_segment_compiled", "lu_factor_sparse_lead", "lu_apply_sparse_lead",
-           "dense_factor", "dense_apply", "solve_with", "FACTOR_SIG", "APPLY_SIG"]
+           "dense_factor", "dense_apply", "solve_with", "homogenized_eval", "FACTOR_SIG", "APPLY_SIG"]
 
 # status codes of the kernel (mapped to the strings of .results by the caller)
 RUNNING, OK, STEP_TOO_SMALL, TOO_MANY_STEPS, DIVERGED = 0, 1, 2, 3, 4
@@ -132,6 +132,59 @@ def dense_apply(J, A, piv, b, out):
     lu_apply_sparse_lead(A, piv, out, n, 0, n)
 
 
+@nb.njit(cache=True, error_model="numpy")
+def homogenized_eval(fjt, y, p, dp, F, J, Ht, with_ht):
+    """The homogenized system of a system whose equations all have degree 2, on a chart, from the system's own
+    kernel ``fjt`` (see :class:`.projective.HomogenizedQuadratic`, the numpy twin): unknowns y = (y0, y_1..y_n),
+    parameters p = (the system's parameters, chart c (n + 1)); rows 0..n-1 are F_h(y0, y) = y0^2 F(y / y0) =
+    y0^2 C + y0 L y + Q(y), from F at y, -y and 0 (F(y) - F(-y) = 2 L y, F(y) + F(-y) = 2 (C + Q(y))), row n the
+    chart c . y - 1.  dF_h/dy = y0 L + DQ(y) from J(y) +- J(-y), dF_h/dy0 = 2 y0 C + L y, and Ht (with
+    ``with_ht``) the same combination of the system's Ht at the three points (the chart does not move: dp = 0
+    on its entries).  J must be zero where the system's kernel writes nothing (its caller zeroes it once)."""
+    n1 = y.shape[0]
+    n = n1 - 1
+    ma = p.shape[0] - n1
+    pa = np.empty(ma, np.complex128)
+    dpa = np.empty(ma, np.complex128)
+    for k in range(ma):
+        pa[k] = p[k]
+        dpa[k] = dp[k]
+    xp = np.empty(n, np.complex128)
+    xm = np.empty(n, np.complex128)
+    x0 = np.zeros(n, np.complex128)
+    for j in range(n):
+        xp[j] = y[j + 1]
+        xm[j] = -y[j + 1]
+    Fp = np.empty(n, np.complex128)
+    Fm = np.empty(n, np.complex128)
+    F0 = np.empty(n, np.complex128)
+    Hp = np.zeros(n, np.complex128)
+    Hm = np.zeros(n, np.complex128)
+    H0 = np.zeros(n, np.complex128)
+    Jp = np.zeros((n, n), np.complex128)
+    Jm = np.zeros((n, n), np.complex128)
+    J0 = np.zeros((n, n), np.complex128)
+    fjt(xp, pa, dpa, Fp, Jp, Hp)
+    fjt(xm, pa, dpa, Fm, Jm, Hm)
+    fjt(x0, pa, dpa, F0, J0, H0)
+    y0 = y[0]
+    for i in range(n):
+        L = 0.5 * (Fp[i] - Fm[i])
+        F[i] = y0 * y0 * F0[i] + y0 * L + 0.5 * (Fp[i] + Fm[i]) - F0[i]
+        J[i, 0] = 2.0 * y0 * F0[i] + L
+        for j in range(n):
+            J[i, j + 1] = y0 * 0.5 * (Jp[i, j] + Jm[i, j]) + 0.5 * (Jp[i, j] - Jm[i, j])
+        if with_ht:
+            Ht[i] = y0 * y0 * H0[i] + y0 * 0.5 * (Hp[i] - Hm[i]) + 0.5 * (Hp[i] + Hm[i]) - H0[i]
+    acc = -1.0 + 0j
+    for j in range(n1):
+        acc += p[ma + j] * y[j]
+        J[n, j] = p[ma + j]
+    F[n] = acc
+    if with_ht:
+        Ht[n] = 0.0
+
+
 def solve_with(factor, apply, J, b):
     """J^{-1} b by a (factor, apply) pair of compiled kernels, from Python (checks and tests); None when the
     factorization fails (J singular)."""
@@ -175,38 +228,46 @@ def _lin(ok, apply, J, A, piv, b, out):
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _tangent_rhs(fjt, x, t, dt, p1, p0, g, p, dp, F, J, Ht, rhs):
-    """rhs = -H_t dt at (x, t) (fjt also writes F and H_x into F and J)."""
+def _tangent_rhs(fjt, hom, x, t, dt, p1, p0, g, p, dp, F, J, Ht, rhs):
+    """rhs = -H_t dt at (x, t) (fjt also writes F and H_x into F and J; ``hom``: of the homogenized system)."""
     _params(p1, p0, g, t, p, dp)
-    fjt(x, p, dp, F, J, Ht)
+    if hom:
+        homogenized_eval(fjt, x, p, dp, F, J, Ht, True)
+    else:
+        fjt(x, p, dp, F, J, Ht)
     for i in range(rhs.shape[0]):
         rhs[i] = -Ht[i] * dt
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _newton_rhs(fj, x, p, F, J, rhs):
-    """rhs = -F(x) at the parameters p (fj also writes H_x into J)."""
-    fj(x, p, F, J)
+def _newton_rhs(fj, fjt, hom, x, p, F, J, rhs):
+    """rhs = -F(x) at the parameters p (fj also writes H_x into J; ``hom``: of the homogenized system)."""
+    if hom:
+        homogenized_eval(fjt, x, p, p, F, J, F, False)
+    else:
+        fj(x, p, F, J)
     for i in range(rhs.shape[0]):
         rhs[i] = -F[i]
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _stage(fjt, factor, apply, x, t, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k):
+def _stage(fjt, hom, factor, apply, x, t, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k):
     """k = dx/ds = -H_x^{-1} H_t dt at (x, t), factoring H_x in (J, A, piv); True when it is regular."""
-    _tangent_rhs(fjt, x, t, dt, p1, p0, g, p, dp, F, J, Ht, rhs)
+    _tangent_rhs(fjt, hom, x, t, dt, p1, p0, g, p, dp, F, J, Ht, rhs)
     ok = factor(J, A, piv)
     _lin(ok, apply, J, A, piv, rhs, k)
     return ok
 
 
-@nb.njit(nbt.void(_FJ, _FJT, _FACTOR, _APPLY, _C2, _C2, _C2, _C1, _C1, _C1, nbt.float64[::1], nbt.float64[::1],
-                  _C2, nbt.float64[::1], nbt.int64[::1], nbt.int64[::1], nbt.float64[::1]),
+@nb.njit(nbt.void(_FJ, _FJT, _FACTOR, _APPLY, nbt.boolean, _C2, _C2, _C2, _C1, _C1, _C1, nbt.float64[::1],
+                  nbt.float64[::1], _C2, nbt.float64[::1], nbt.int64[::1], nbt.int64[::1], nbt.float64[::1]),
          cache=True, error_model="numpy", nogil=True)
-def track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, Sout, status, steps, Hout):
+def track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xout, Sout, status, steps, Hout):
     """Track every row of X from t = TA[i] to TB[i] (see module doc).  ``opts`` = (initial_step, max_step,
     min_step, max_steps, predictor_tol, corrector_tol, max_contraction, max_norm, noise_tol, step_safety); rows
-    of P1, P0, G are per path when they have as many rows as X, else row 0 serves every path."""
+    of P1, P0, G are per path when they have as many rows as X, else row 0 serves every path.  With ``hom`` the
+    tracked system is the homogenization of (fj, fjt) on the chart that ends the parameters
+    (:func:`homogenized_eval`)."""
     N, n = X.shape
     neq = n
     mp = P1.shape[1]
@@ -259,32 +320,32 @@ def track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, S
             ha = min(h, 1.0 - s)
             if not have_k1:
                 if have_lu:
-                    _tangent_rhs(fjt, x, ta + s * dt, dt, p1, p0, g, p, dp, F, Js, Ht, rhs)
+                    _tangent_rhs(fjt, hom, x, ta + s * dt, dt, p1, p0, g, p, dp, F, Js, Ht, rhs)
                     apply(Jc, Ac, pivc, rhs, k1)
                 else:
-                    have_lu = _stage(fjt, factor, apply, x, ta + s * dt, dt, p1, p0, g, p, dp, F, Jc, Ht, Ac, pivc,
+                    have_lu = _stage(fjt, hom, factor, apply, x, ta + s * dt, dt, p1, p0, g, p, dp, F, Jc, Ht, Ac, pivc,
                                      rhs, k1)
                 have_k1 = True
             for c in range(n):
                 xt[c] = x[c] + 0.5 * ha * k1[c]
-            _stage(fjt, factor, apply, xt, ta + (s + 0.5 * ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k2)
+            _stage(fjt, hom, factor, apply, xt, ta + (s + 0.5 * ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k2)
             for c in range(n):
                 xt[c] = x[c] + 0.5 * ha * k2[c]
-            _stage(fjt, factor, apply, xt, ta + (s + 0.5 * ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k3)
+            _stage(fjt, hom, factor, apply, xt, ta + (s + 0.5 * ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k3)
             for c in range(n):
                 xt[c] = x[c] + ha * k3[c]
-            _stage(fjt, factor, apply, xt, ta + (s + ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k4)
+            _stage(fjt, hom, factor, apply, xt, ta + (s + ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k4)
             for c in range(n):
                 xt[c] = x[c] + (ha / 6.0) * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
             sn = s + ha
             _params(p1, p0, g, ta + sn * dt, p, dp)
             # two Newton corrections at t(s + h): a Newton step, then a chord step with the same factors
-            _newton_rhs(fj, xt, p, F, Jn, rhs)
+            _newton_rhs(fj, fjt, hom, xt, p, F, Jn, rhs)
             okn = factor(Jn, An, pivn)
             _lin(okn, apply, Jn, An, pivn, rhs, d1)
             for c in range(n):
                 xt[c] += d1[c]
-            _newton_rhs(fj, xt, p, F, Js, rhs)
+            _newton_rhs(fj, fjt, hom, xt, p, F, Js, rhs)
             _lin(okn, apply, Jn, An, pivn, rhs, d2)
             for c in range(n):
                 x2[c] = xt[c] + d2[c]
@@ -296,7 +357,7 @@ def track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, S
             ok = finite and e1 <= ptol and contracting and e2 <= ctol
             if finite and not ok and e1 <= ptol and e2 <= noise_tol:
                 # round-off floor: a third update that does not move away either
-                _newton_rhs(fj, x2, p, F, Js, rhs)
+                _newton_rhs(fj, fjt, hom, x2, p, F, Js, rhs)
                 _lin(okn, apply, Jn, An, pivn, rhs, d3)
                 e3 = _norm(d3) / scale
                 if np.isfinite(e3) and e3 <= 2.0 * e2 and e3 <= noise_tol:
@@ -349,7 +410,9 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
     from .tracker import RUNNING as S_RUN, SegmentResult
 
     o = options
-    fj, fjt, factor, apply = homotopy.compiled_kernels()
+    kernels = homotopy.compiled_kernels()
+    fj, fjt, factor, apply = kernels[:4]
+    hom = bool(kernels[4]) if len(kernels) > 4 else False
     X = np.array(x0, dtype=complex, order="C")  # copies: the kernel needs writable, contiguous arrays
     N, n = X.shape
     TA = np.array(np.broadcast_to(np.asarray(t_a, dtype=complex), (N,)), order="C")
@@ -367,6 +430,6 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
     steps = np.empty(N, dtype=np.int64)
     Hout = np.empty(N)
     if N:
-        track_kernel(fj, fjt, factor, apply, X, P1, P0, G, TA, TB, H0, opts, Xout, S, st, steps, Hout)
+        track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xout, S, st, steps, Hout)
     names = np.array([S_RUN, SUCCESS, S_SMALL, S_MANY, S_DIV], dtype=object)
     return SegmentResult(x=Xout, s=S, t=TA + S * (TB - TA), status=names[st], steps=steps, h=Hout)

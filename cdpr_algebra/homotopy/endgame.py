@@ -15,6 +15,13 @@ Pipeline (:func:`run_pipeline`, used by :func:`~.tracker.track_paths`), all vect
    rule in s = t^(1/c)) the mean of the c * samples_per_loop loop points estimates x(0). Two
    successive radii agreeing to ``cauchy_tol`` end the endgame; c > 1 or an ill-conditioned
    endpoint is ``singular``.
+   With ``EndgameOptions.projective`` (homotopies that offer ``projective()``, e.g. parameter homotopies of
+   systems whose equations all have degree 2) no norm decides anything: phase 2 switches a path whose norm
+   passes ``switch_norm`` to a random affine chart of projective space (where every solution, however large,
+   is an ordinary point), and the Cauchy endgame runs there.  Its limit Y* = (y0*, y*) is a finite solution
+   x = y* / y0* when y0* is nonzero beyond the endgame's accuracy, and at infinity when y0* vanishes to that
+   accuracy while the samples show y0(t) ~ t^v with v > 0 (``order`` v, winding number c); anything else is
+   ``endgame_failed``.  Homotopies that are already projective (retries) are decided the same way.
 4. path jumping: distinct paths must not end at the same nonsingular point; duplicates are
    re-tracked from the start with tighter settings (then in mpmath). Endpoints still shared by
    several paths (within ``cluster_tol``) are singular: their multiplicity is the path count.
@@ -28,11 +35,12 @@ from dataclasses import dataclass, field, asdict, replace
 
 import numpy as np
 
-from .results import (AT_INFINITY, DIVERGED, FAILURES, SINGULAR, STEP_TOO_SMALL, SUCCESS, TOO_MANY_STEPS,
-                      PathResult)
+from .results import (AT_INFINITY, DIVERGED, ENDGAME_FAILED, FAILURES, SINGULAR, STEP_TOO_SMALL, SUCCESS,
+                      TOO_MANY_STEPS, PathResult)
 from .tracker import TrackerOptions, _norm, _solve, track_segment
 
-__all__ = ["EndgameOptions", "SolveOptions", "run_pipeline", "refine", "cauchy_endgame", "mp_track", "mp_path"]
+__all__ = ["EndgameOptions", "SolveOptions", "run_pipeline", "refine", "cauchy_endgame", "decide_in_chart", "mp_track",
+           "mp_path"]
 
 
 @dataclass(frozen=True)
@@ -53,9 +61,13 @@ class EndgameOptions:
       endpoint (the loop mean of a diverging Puiseux series is finite): the path is at infinity;
     * ``cluster_tol`` [1e-6]: finite endpoints of several paths closer than this (relative) are one
       singular solution whose multiplicity is the number of those paths;
-    * ``give_up_norm`` [inf]: a path in the Cauchy endgame with |x| beyond this is not followed further
-      (status ``diverged``, its t and last point recorded): for callers that only want solutions of bounded
-      norm (the DGP: a thousand robot sizes).
+    * ``projective`` [False]: decide finite / at infinity in a random projective chart (module doc, step 3);
+      ``at_infinity_norm`` and ``min_valuation`` then play no part;
+    * ``switch_norm`` [1e4]: with ``projective``, a path of the fast finish (phase 2) whose |x| passes this
+      goes on in the chart (a change of coordinates, not a verdict: solutions of any norm are returned);
+    * ``infinity_margin`` [10]: with ``projective``, y0* counts as zero when |y0*| <= margin x its accuracy
+      (the Cauchy estimate's, at least 1e-14) and as nonzero beyond; ``min_order`` [1 / 32]: the smallest
+      valuation v of y0(t) ~ t^v that shows y0 -> 0 (1 / (2 ``max_winding_number``)).
     """
 
     endgame_start: float = 0.1
@@ -71,7 +83,10 @@ class EndgameOptions:
     refine_tol: float = 1e-13
     finite_residual: float = 1e-6
     cluster_tol: float = 1e-6
-    give_up_norm: float = float("inf")
+    projective: bool = False
+    switch_norm: float = 1e4
+    infinity_margin: float = 10.0
+    min_order: float = 1.0 / 32.0
 
     def to_dict(self):
         return asdict(self)
@@ -164,6 +179,8 @@ class EndgameResult:
     accuracy: np.ndarray
     t: np.ndarray
     steps: np.ndarray
+    xlast: np.ndarray = None  # the path at the last sample radius reached
+    xprev: np.ndarray = None  # ... and at the radius before (NaN when there was none)
 
 
 def _cauchy_loops(homotopy, x, r, o: EndgameOptions, tr: TrackerOptions):
@@ -205,9 +222,13 @@ def _cauchy_loops(homotopy, x, r, o: EndgameOptions, tr: TrackerOptions):
     return est, wind, ok, steps
 
 
-def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions) -> EndgameResult:
-    """Power-series valuation test for divergence plus Cauchy-integral endgame (see module doc)."""
+def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions, chart: bool = False) -> EndgameResult:
+    """Power-series valuation test for divergence plus Cauchy-integral endgame (see module doc).  With ``chart``
+    (x in a projective chart) no path is declared at infinity here: every converged limit is returned as a finite
+    chart point (``singular``, provisional) for :func:`decide_in_chart`, and a limit that does not solve H = 0
+    is ``endgame_failed``."""
     x = np.array(x, dtype=complex, copy=True)
+    xprev = np.full_like(x, np.nan)
     N, n = x.shape
     r = np.full(N, float(t0))
     status = np.full(N, "", dtype=object)
@@ -225,6 +246,7 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
         a = active
         seg = track_segment(homotopy, x[a], r[a], r[a] * o.sample_ratio, tr)
         steps[a] += seg.steps
+        xprev[a] = x[a]
         x[a] = seg.x
         r[a] = np.where(seg.status == SUCCESS, r[a] * o.sample_ratio, np.abs(seg.t))
         ln = np.full(N, np.nan)
@@ -233,20 +255,18 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
         lognorm.append(ln)
         vals.append(v)
         nx = np.max(np.abs(x[a]), axis=1)
-        big = nx > o.at_infinity_norm
-        infl = big | (seg.status == DIVERGED)
-        give_up = ~infl & (nx > o.give_up_norm)
-        status[a[give_up]] = DIVERGED
-        xend[a[give_up]] = x[a[give_up]]
-        acc[a[give_up]] = np.nan
-        infl_or_out = infl | give_up
-        if len(vals) >= 2:
-            v1, v0 = vals[-1][a], vals[-2][a]
-            stable = np.abs(v1 - v0) <= 0.1 * np.abs(v1) + 0.01
-            infl |= (v1 < o.min_valuation) & (v0 < o.min_valuation) & stable & (np.exp(ln[a]) > 10.0)
+        if chart:  # a chart point does not go to infinity: only a failed segment stops the path
+            infl = np.zeros(len(a), dtype=bool)
+        else:
+            infl = (nx > o.at_infinity_norm) | (seg.status == DIVERGED)
+            if len(vals) >= 2:
+                v1, v0 = vals[-1][a], vals[-2][a]
+                stable = np.abs(v1 - v0) <= 0.1 * np.abs(v1) + 0.01
+                infl |= (v1 < o.min_valuation) & (v0 < o.min_valuation) & stable & (np.exp(ln[a]) > 10.0)
         status[a[infl]] = AT_INFINITY
         xend[a[infl]] = x[a[infl]]
         acc[a[infl]] = np.nan
+        infl_or_out = infl
         failed = (seg.status != SUCCESS) & ~infl_or_out
         status[a[failed]] = seg.status[failed]
         xend[a[failed]] = x[a[failed]]
@@ -267,7 +287,7 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
             ci = np.flatnonzero(conv)
             diverging = ci[~(resid <= o.finite_residual)]
             conv[diverging] = False
-            status[a[diverging]] = AT_INFINITY
+            status[a[diverging]] = ENDGAME_FAILED if chart else AT_INFINITY
             xend[a[diverging]] = x[a[diverging]]
             acc[a[diverging]] = np.nan
             wind[a[diverging]] = c[diverging]
@@ -282,14 +302,37 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
         acc[a[better]] = diff[better]
         wind[a[better]] = c[better]
         active = a[~conv & (status[a] == "")]
-    # out of samples: finite if the last estimate is decent, else step_too_small
+    # out of samples: finite if the last estimate is decent, else the endgame did not converge
     for i in active:
         if np.isfinite(acc[i]) and acc[i] <= 1e-5:
             status[i] = SINGULAR
         else:
-            status[i] = STEP_TOO_SMALL
+            status[i] = ENDGAME_FAILED
             xend[i] = x[i]
-    return EndgameResult(x=xend, status=status, winding=wind, accuracy=acc, t=r.astype(complex), steps=steps)
+    return EndgameResult(x=xend, status=status, winding=wind, accuracy=acc, t=r.astype(complex), steps=steps,
+                         xlast=x, xprev=xprev)
+
+
+def decide_in_chart(Y, accuracy, ylast=None, yprev=None, o: EndgameOptions = EndgameOptions()):
+    """Finite or at infinity, for limits Y* (rows) of paths in a projective chart, from the homogenizing
+    coordinate y0 (column 0).  Returns (at_infinity, undecided, order): ``at_infinity`` where |y0*| <=
+    ``infinity_margin`` x the accuracy (relative ``accuracy``, at least 1e-14, times |Y*|) and the samples at the
+    last two radii of the endgame (``ylast``, ``yprev``: None for endpoints that Newton refined, whose accuracy
+    is then full precision) show y0(t) ~ t^v with v >= ``min_order`` (``order`` = v); ``undecided`` where y0*
+    vanishes to accuracy but the samples do not show y0 -> 0; finite elsewhere (y0* nonzero beyond its
+    accuracy: x = y* / y0*, whatever its size)."""
+    Y = np.atleast_2d(Y)
+    scale = np.max(np.abs(Y), axis=1)
+    err = o.infinity_margin * np.maximum(np.where(np.isfinite(accuracy), accuracy, np.inf), 1e-14) * scale
+    zero = np.abs(Y[:, 0]) <= err
+    order = np.full(len(Y), np.nan)
+    if ylast is None:
+        return zero, np.zeros(len(Y), dtype=bool), order
+    with np.errstate(all="ignore"):
+        v = np.log(np.abs(ylast[:, 0]) / np.abs(yprev[:, 0])) / np.log(o.sample_ratio)
+    shown = np.isfinite(v) & (v >= o.min_order)
+    order[zero & shown] = v[zero & shown]
+    return zero & shown, zero & ~shown, order
 
 
 # ---------------------------------------------------------------------------------------------
@@ -388,19 +431,29 @@ def _track_to_endgame(homotopy, X0, idx, opts: SolveOptions, te, tr: TrackerOpti
 
 def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
     """Phases 2-3 for paths at t = te (``h``: step lengths in t that phase 1 ended with, to start phase 2 with;
-    NaN or None: the tracker's initial step). Returns lists of per-path tuples."""
+    NaN or None: the tracker's initial step).  Returns per-path arrays (x, status, winding, accuracy, t, steps,
+    order).  A homotopy with a ``chart`` (it is itself projective) has its endpoints decided by
+    :func:`decide_in_chart`; with ``endgame.projective`` an affine homotopy that offers ``projective()`` hands
+    the paths that do not finish regular (or pass ``switch_norm``) to its projective twin for the endgame, and
+    gets them back in affine coordinates (module doc)."""
     eo = opts.endgame
     te = eo.endgame_start
     N = len(x_te)
+    chart = getattr(homotopy, "chart", None)
+    proj = None
+    if chart is None and eo.projective and hasattr(homotopy, "projective"):
+        proj = homotopy.projective()
     out_x = x_te.copy()
     status = np.full(N, "", dtype=object)
     wind = np.ones(N, dtype=int)
     acc = np.full(N, np.inf)
     tfin = np.zeros(N, dtype=complex)
+    order = np.full(N, np.nan)
     h0 = None
     if h is not None:
         h0 = np.where(np.isfinite(h), np.asarray(h, dtype=float) / abs(te), tr.initial_step)
-    seg = track_segment(homotopy, x_te, te, 0.0, tr, h0=h0)
+    fast = tr if proj is None else replace(tr, max_norm=min(tr.max_norm, eo.switch_norm))
+    seg = track_segment(homotopy, x_te, te, 0.0, fast, h0=h0)
     steps = seg.steps.copy()
     reached = seg.status == SUCCESS
     xr, upd, res, cond, quad = refine(homotopy, seg.x[reached], 0.0, tol=eo.refine_tol)
@@ -409,42 +462,70 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
     out_x[gi] = xr[good]
     status[gi] = SUCCESS
     acc[gi] = upd[good]
+    if chart is not None and gi.size:  # a regular point of the chart may lie at infinity (y0 = 0)
+        inf, _, _ = decide_in_chart(out_x[gi], acc[gi], o=eo)
+        status[gi[inf]] = AT_INFINITY
     rest = np.flatnonzero(status == "")
     if rest.size:
-        eg = cauchy_endgame(homotopy, x_te[rest], te, eo, tr)
+        in_chart = chart is not None or proj is not None
+        hend = proj if proj is not None else homotopy
+        if proj is not None:
+            from .projective import to_chart
+
+            Y0 = to_chart(x_te[rest], proj.chart)
+        else:
+            Y0 = x_te[rest]
+        eg = cauchy_endgame(hend, Y0, te, eo, tr, chart=in_chart)
         steps[rest] += eg.steps
-        out_x[rest] = eg.x
-        status[rest] = eg.status
-        wind[rest] = eg.winding
-        acc[rest] = eg.accuracy
-        tfin[rest] = np.where(np.isin(eg.status, (SINGULAR,)), 0.0, eg.t)
-        fin = rest[eg.status == SINGULAR]
+        st, Y, a_ = eg.status.copy(), eg.x, eg.accuracy.copy()
+        fin = np.flatnonzero(st == SINGULAR)
+        if in_chart and fin.size:
+            inf, undecided, ordv = decide_in_chart(Y[fin], a_[fin], eg.xlast[fin], eg.xprev[fin], eo)
+            st[fin[inf]] = AT_INFINITY
+            st[fin[undecided]] = ENDGAME_FAILED
+            order[rest[fin]] = ordv
+            fin = np.flatnonzero(st == SINGULAR)
         if fin.size:
             # finite endpoints: winding number 1 and quadratic Newton -> nonsingular after all
-            xr, upd, res_, cond_, quad_ = refine(homotopy, out_x[fin], 0.0, tol=eo.refine_tol)
-            ns = (wind[fin] == 1) & quad_ & (cond_ <= eo.singular_condition)
-            out_x[fin[ns]] = xr[ns]
-            acc[fin[ns]] = upd[ns]
-            status[fin[ns]] = SUCCESS
-    return out_x, status, wind, acc, tfin, steps
+            Yr, upd_, res_, cond_, quad_ = refine(hend, Y[fin], 0.0, tol=eo.refine_tol)
+            ns = (eg.winding[fin] == 1) & quad_ & (cond_ <= eo.singular_condition)
+            Y[fin[ns]] = Yr[ns]
+            a_[fin[ns]] = upd_[ns]
+            st[fin[ns]] = SUCCESS
+        if proj is not None:  # back to affine coordinates (a path at infinity keeps its last sample)
+            last = np.where((st == AT_INFINITY)[:, None] | np.isin(st, FAILURES)[:, None], eg.xlast, Y)
+            with np.errstate(all="ignore"):
+                Y = last[:, 1:] / last[:, :1]
+        out_x[rest] = Y
+        status[rest] = st
+        wind[rest] = eg.winding
+        acc[rest] = a_
+        tfin[rest] = np.where(np.isin(st, (SINGULAR, SUCCESS)), 0.0, eg.t)
+    return out_x, status, wind, acc, tfin, steps, order
 
 
-def _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried):
+def _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order=None):
     n = len(idx)
-    H, Hx = homotopy.evaluate_and_jacobian(x, np.zeros(n, dtype=complex))
-    with np.errstate(all="ignore"):
-        res = np.max(np.abs(H), axis=1) / (1 + np.max(np.abs(x), axis=1))
-        try:
-            cond = np.linalg.cond(Hx)
-        except np.linalg.LinAlgError:
-            cond = np.full(n, np.inf)
+    res = np.full(n, np.inf)
+    cond = np.full(n, np.inf)
+    ok = np.flatnonzero(np.all(np.isfinite(x), axis=1))  # a path at infinity may have no finite affine point
+    if ok.size:
+        H, Hx = homotopy.evaluate_and_jacobian(x[ok], np.zeros(ok.size, dtype=complex))
+        with np.errstate(all="ignore"):
+            res[ok] = np.max(np.abs(H), axis=1) / (1 + np.max(np.abs(x[ok]), axis=1))
+            try:
+                cond[ok] = np.linalg.cond(Hx)
+            except np.linalg.LinAlgError:
+                pass
     res = np.where(np.isfinite(res), res, np.inf)
     cond = np.where(np.isfinite(cond), cond, np.inf)
+    order = np.full(n, np.nan) if order is None else order
     out = []
     for k, i in enumerate(idx):
         out.append(PathResult(index=int(i), status=str(status[k]), endpoint=x[k], t=complex(tfin[k]),
                               residual=float(res[k]), condition=float(cond[k]), accuracy=float(acc[k]),
-                              steps=int(steps[k]), winding_number=int(wind[k]), retried=str(retried[k])))
+                              steps=int(steps[k]), winding_number=int(wind[k]), retried=str(retried[k]),
+                              order=float(order[k])))
     return out
 
 
@@ -456,12 +537,13 @@ def _run(homotopy, X0, idx, opts: SolveOptions, tr: TrackerOptions):
     wind = np.ones(n, dtype=int)
     acc = np.full(n, np.inf)
     tfin = np.full(n, te, dtype=complex)
+    order = np.full(n, np.nan)
     ok = np.flatnonzero(st1 == SUCCESS)
     if ok.size:
-        xo, so, wo, ao, to, sto = _finish(homotopy, x[ok], opts, tr, h[ok])
-        x[ok], status[ok], wind[ok], acc[ok], tfin[ok] = xo, so, wo, ao, to
+        xo, so, wo, ao, to, sto, oo = _finish(homotopy, x[ok], opts, tr, h[ok])
+        x[ok], status[ok], wind[ok], acc[ok], tfin[ok], order[ok] = xo, so, wo, ao, to, oo
         steps[ok] += sto
-    return _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried)
+    return _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order)
 
 
 def duplicate_groups(points: np.ndarray, tol: float) -> list:
@@ -500,9 +582,9 @@ def mp_path(homotopy, x0, index, opts: SolveOptions, tr: TrackerOptions, steps: 
     xm, st, ns = mp_track(homotopy, x0, 1.0, opts.endgame.endgame_start, opts.mp_dps, tr)
     if st != SUCCESS:
         return None
-    xo, so, wo, ao, to, sto = _finish(homotopy, xm[None, :], opts, tr)
+    xo, so, wo, ao, to, sto, oo = _finish(homotopy, xm[None, :], opts, tr)
     return _records(homotopy, np.array([index]), xo, so, wo, ao, to, sto + ns + steps,
-                    np.array(["mpmath"], dtype=object))[0]
+                    np.array(["mpmath"], dtype=object), oo)[0]
 
 
 def run_pipeline(homotopy, X0, opts: SolveOptions):

@@ -80,6 +80,17 @@ class ParameterHomotopy:
         self.gamma = None if gamma is None else complex(gamma)
         self.n = system.n
         self.neq = system.neq
+        self.chart = None  # set on the projective twin: its unknowns are (y0, y) on this chart
+
+    def projective(self, seed: int = 20131) -> "ParameterHomotopy":
+        """The same parameter path for the homogenized system on a random chart (:func:`.projective.projectivize`);
+        its ``chart`` attribute holds the chart's coefficients."""
+        from .projective import projectivize
+
+        proj, c = projectivize(self.system, seed)
+        h = ParameterHomotopy(proj, self.p1, self.p0, gamma=self.gamma)
+        h.chart = c
+        return h
 
     def parameters_at(self, t):
         """p(t) for an array of t: shape (len(t), m); and dp/dt of the same shape."""
@@ -105,7 +116,11 @@ class ParameterHomotopy:
     def path_parameters(self):
         """(p1, p0, gamma) as arrays of one row for :func:`.compiled.track_kernel` (gamma 1: straight segment)."""
         g = 1.0 if self.gamma is None else self.gamma
-        return np.array(self.p1[None, :], order="C"), np.array(self.p0[None, :], order="C"), np.array([g], dtype=complex)
+        extra = getattr(self.system, "kernel_constants", None)  # e.g. the chart of a homogenized system
+        p1, p0 = self.p1, self.p0
+        if extra is not None:
+            p1, p0 = np.concatenate([p1, extra]), np.concatenate([p0, extra])
+        return np.array(p1[None, :], order="C"), np.array(p0[None, :], order="C"), np.array([g], dtype=complex)
 
     def evaluate(self, x, t):
         p, _ = self.parameters_at(t)

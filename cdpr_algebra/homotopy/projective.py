@@ -7,12 +7,15 @@ going there are tracked as easily as the others; a path at infinity ends with y0
 
 from __future__ import annotations
 
+import weakref
+
 import numpy as np
 import sympy as sp
 
 from .systems import PolynomialSystem
 
 _CACHE: dict[tuple, tuple] = {}
+_NUMERIC: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()  # per hand-written system object
 
 
 def _chart(n: int, seed: int) -> np.ndarray:
@@ -39,6 +42,23 @@ class HomogenizedQuadratic:
         self.degrees = tuple(system.degrees) + (1,)
         self.name = f"{getattr(system, 'name', 'system')}_projective"
         self.hash = f"{getattr(system, 'hash', id(system))}:quadratic-projective"
+
+    def compiled_kernels(self):
+        """When the system has compiled kernels: (its fj, its fjt, dense LU factor and apply, True), the last
+        entry telling the compiled tracker to evaluate the homogenized system through them
+        (:func:`.compiled.homogenized_eval`, the chart appended to the parameters); else None."""
+        get = getattr(self.system, "compiled_kernels", None)
+        base = None if get is None else get()
+        if base is None:
+            return None
+        from .compiled import dense_apply, dense_factor
+
+        return base[0], base[1], dense_factor, dense_apply, True
+
+    @property
+    def kernel_constants(self) -> np.ndarray:
+        """Appended to the parameters given to the compiled kernels: the chart."""
+        return self.c
 
     def _parts(self, Y, p, kind):
         Y = np.atleast_2d(np.asarray(Y, dtype=complex))
@@ -112,13 +132,18 @@ def projectivize(system, seed: int = 20131) -> tuple:
     A system that is not a compiled :class:`PolynomialSystem` (a hand-written fast evaluator) and whose
     equations all have degree 2 is homogenized numerically (:class:`HomogenizedQuadratic`); otherwise the
     homogenized equations are built with sympy and compiled."""
-    key = (system.hash, seed, isinstance(system, PolynomialSystem))
+    if not isinstance(system, PolynomialSystem):
+        cached = _NUMERIC.setdefault(system, {})
+        if seed not in cached:
+            if not all(d == 2 for d in system.degrees):
+                raise ValueError("only systems whose equations all have degree 2 are homogenized numerically")
+            c = _chart(system.n, seed)
+            cached[seed] = (HomogenizedQuadratic(system, c), c)
+        return cached[seed]
+    key = (system.hash, seed)
     if key in _CACHE:
         return _CACHE[key]
     c = _chart(system.n, seed)
-    if not isinstance(system, PolynomialSystem) and all(d == 2 for d in system.degrees):
-        _CACHE[key] = (HomogenizedQuadratic(system, c), c)
-        return _CACHE[key]
     y0 = sp.Symbol("_y0")
     ys = [sp.Symbol(f"_y_{v}") for v in system.variables]
     eqs = []

@@ -10,7 +10,10 @@
 Return codes (``status``): ``success`` (finite, nonsingular endpoint refined by Newton),
 ``singular`` (finite endpoint where dF/dx is singular, or winding number > 1), ``at_infinity``
 (the path diverges as t -> 0), and the failures ``step_too_small``, ``too_many_steps``,
-``diverged`` (a non-finite value or a blow-up away from t = 0).
+``diverged`` (a non-finite value or a blow-up away from t = 0), ``endgame_failed`` (the endgame could not
+decide between a finite endpoint and infinity), ``path_jumping`` (the path ends on a nonsingular point that
+another path reached too, after the re-tracking rounds).  Each status is one of four *outcomes*
+(:func:`outcome`): ``regular``, ``singular``, ``at_infinity``, ``failed``.
 """
 
 from __future__ import annotations
@@ -28,8 +31,30 @@ AT_INFINITY = "at_infinity"
 STEP_TOO_SMALL = "step_too_small"
 TOO_MANY_STEPS = "too_many_steps"
 DIVERGED = "diverged"
-FAILURES = (STEP_TOO_SMALL, TOO_MANY_STEPS, DIVERGED)
+ENDGAME_FAILED = "endgame_failed"
+PATH_JUMPING = "path_jumping"
+FAILURES = (STEP_TOO_SMALL, TOO_MANY_STEPS, DIVERGED, ENDGAME_FAILED, PATH_JUMPING)
 STATUSES = (SUCCESS, SINGULAR, AT_INFINITY) + FAILURES
+OUTCOMES = ("regular", "singular", "at_infinity", "failed")
+
+
+def outcome(status: str) -> str:
+    """The outcome of a path with this status: regular, singular, at_infinity or failed."""
+    if status == SUCCESS:
+        return "regular"
+    if status in (SINGULAR, AT_INFINITY):
+        return status
+    if status in FAILURES:
+        return "failed"
+    raise ValueError(f"unknown path status {status!r}")
+
+
+def outcome_counts(paths) -> dict:
+    """{"regular": .., "singular": .., "at_infinity": .., "failed": ..} over PathResults (they add up to len)."""
+    counts = dict.fromkeys(OUTCOMES, 0)
+    for p in paths:
+        counts[outcome(p.status)] += 1
+    return counts
 
 
 @dataclass(frozen=True)
@@ -45,7 +70,8 @@ class PathResult:
     accuracy: float  # estimated error of the endpoint (last Newton update or endgame estimate difference)
     steps: int  # accepted + rejected steps, all phases
     winding_number: int = 1
-    retried: str = ""  # "", "tight" (double precision, tighter settings), "mpmath" or "detour" (new random path)
+    retried: str = ""  # "", "tight" (double precision, tighter settings), "mpmath", "projective" or "gamma"
+    order: float = float("nan")  # at_infinity in a chart: y0 ~ t^order (order > 0), estimated by the endgame
 
     def __post_init__(self):
         ep = np.array(self.endpoint, dtype=complex)

@@ -19,9 +19,9 @@ from dataclasses import replace
 
 import numpy as np
 
-from .endgame import SolveOptions, duplicate_groups, mp_path, mp_track
-from .projective import from_chart, projectivize, to_chart
-from .results import AT_INFINITY, FAILURES, SINGULAR, SUCCESS, Solution, SolveResult, TrackResult
+from .endgame import SolveOptions, duplicate_groups, mp_path, mp_track, refine
+from .projective import from_chart, to_chart
+from .results import FAILURES, PATH_JUMPING, SINGULAR, SUCCESS, Solution, SolveResult, TrackResult
 from .homotopies import ParameterHomotopy
 from .start_systems import multi_homogeneous, parameter_homotopy, random_gamma, total_degree
 from .systems import PolynomialSystem
@@ -116,9 +116,33 @@ def _suspects(paths, tol):
     return sorted(bad)
 
 
+def _mark_path_jumping(homotopy, paths, options):
+    """Paths whose finite endpoints still coincide after the retries: where the common point is nonsingular
+    (Newton converges quadratically there and the condition number is moderate), distinct paths cannot both end
+    there (implicit function theorem), so the first keeps it and the others are failed with ``path_jumping``:
+    a solution is missing, and nothing is merged silently.  Coinciding singular endpoints keep their status:
+    one singular solution whose multiplicity is the number of paths."""
+    fin = [i for i, p in enumerate(paths) if p.status in (SUCCESS, SINGULAR)]
+    if len(fin) < 2:
+        return paths
+    eo = options.endgame
+    for g in duplicate_groups(np.array([paths[i].endpoint for i in fin]), eo.cluster_tol):
+        idx = [fin[j] for j in g]
+        x = np.mean([paths[i].endpoint for i in idx], axis=0)[None, :]
+        xr, upd, res, cond, quad = refine(homotopy, x, 0.0, tol=eo.refine_tol)
+        if not (quad[0] and cond[0] <= eo.singular_condition):
+            continue
+        first, rest = idx[0], idx[1:]
+        paths[first] = type(paths[first])(**{**paths[first].__dict__, "status": SUCCESS, "endpoint": xr[0],
+                                            "winding_number": 1})
+        for i in rest:
+            paths[i] = type(paths[i])(**{**paths[i].__dict__, "status": PATH_JUMPING})
+    return paths
+
+
 def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_solutions, target_parameters,
                              seed: int = 0, options: SolveOptions | None = None, detour: bool = False,
-                             gamma: bool = False, retries: int = 3, ignore=None) -> SolveResult:
+                             gamma: bool = False, retries: int = 3) -> SolveResult:
     """Track the solutions of F(x; p1) = 0 to F(x; p0) = 0 (see :func:`.start_systems.parameter_homotopy`).
 
     Paths that fail, or that end on the same point as another path (a sign of path jumping), are tracked
@@ -129,7 +153,9 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
     Then, with ``options.retry_mpmath``, paths still failed are tracked once more in arbitrary precision
     (:func:`.endgame.mp_track`, ``options.mp_dps`` digits, at most ``options.max_mpmath_paths`` of them, slow:
     pure Python) along the same parameter path, the endgame in double precision (``retried="mpmath"``).
-    ``ignore(path) -> bool`` exempts paths from the retries (e.g. the DGP's paths diverging to infinity).
+    Paths whose nonsingular endpoints still coincide at the end fail with ``path_jumping``
+    (:func:`_mark_path_jumping`).  Endpoints are returned in affine coordinates; a path re-tracked in projective
+    coordinates is decided finite or at infinity by its endgame (:func:`.endgame.decide_in_chart`).
     """
     options = options or SolveOptions()
     rng = np.random.default_rng(seed)
@@ -141,7 +167,7 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
     paths = _track_segments(system, homs, X, options, seed)
     proj = chart = None  # built on the first retry (a system may be slow to homogenize)
     for round_ in range(retries):
-        redo = [i for i in _suspects(paths, options.duplicate_tol) if ignore is None or not ignore(paths[i])]
+        redo = _suspects(paths, options.duplicate_tol)
         if round_ >= 1:  # a singular endpoint reached again in projective coordinates is an answer, not a failure
             redo = [i for i in redo if paths[i].status != SINGULAR]
         if not redo:
@@ -150,15 +176,14 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
         # along the SAME parameter path: paths of one homotopy end on distinct solutions, but a path re-tracked
         # along another route (a new detour) may legitimately end on a solution another path already reached
         if proj is None:
-            proj, chart = projectivize(system)
-        phoms = [ParameterHomotopy(proj, h.p1, h.p0, gamma=h.gamma) for h in homs]
+            phoms = [h.projective() for h in homs]
+            proj, chart = phoms[0].system, phoms[0].chart
         tight = replace(options, tracker=options.tracker.tightened(10.0 ** (round_ + 1)))
         again = _track_segments(proj, phoms, to_chart(X[redo], chart), tight, seed + 1 + round_)
         for i, q in zip(redo, again):
-            x, finite = from_chart(q.endpoint[None, :])
-            status = q.status
-            if status == SUCCESS and finite[0] < 1e-10:
-                status = AT_INFINITY
+            with np.errstate(all="ignore"):
+                x, _ = from_chart(q.endpoint[None, :])
+            status = q.status  # decided in the chart (finite, at infinity, singular, failed)
             # regularity is judged in the chart, where a large-norm solution is well conditioned
             q = type(q)(**{**q.__dict__, "endpoint": x[0]})
             candidate = type(q)(**{**q.__dict__, "index": i, "status": status, "retried": "projective"})
@@ -169,10 +194,11 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
             if (status == SUCCESS and distinct) or (paths[i].status in FAILURES and status not in FAILURES):
                 paths[i] = candidate
     if asked.retry_mpmath and hasattr(homs[0], "mp_evaluate_all"):
-        redo = [i for i, p in enumerate(paths) if p.status in FAILURES and (ignore is None or not ignore(p))]
+        redo = [i for i, p in enumerate(paths) if p.status in FAILURES]
         for i in redo[: options.max_mpmath_paths]:
             q = _mp_retrack(homs, X[i], i, options)
             if q is not None and q.status not in FAILURES:
                 paths[i] = q
+    paths = _mark_path_jumping(homs[-1], paths, options)
     track = TrackResult(paths=tuple(paths), seconds=time.perf_counter() - t0, seed=seed, options=asked.to_dict())
     return SolveResult(solutions=group_solutions(track, options.duplicate_tol, options.endgame.cluster_tol), track=track, start_system="parameter")
