@@ -547,10 +547,11 @@ def _run(homotopy, X0, idx, opts: SolveOptions, tr: TrackerOptions):
 
 
 def duplicate_groups(points: np.ndarray, tol: float) -> list:
-    """Groups (lists of row indices, size >= 2) of points closer than tol (1 + |x|) (max-norm)."""
+    """Groups (lists of row indices, size >= 2) of points that agree in every coordinate to tol (1 + |that
+    coordinate|): each coordinate at its own scale, so that points with one huge coordinate and another that
+    differs (x ~ 1e9, y = +-1) are not taken for one."""
     if len(points) < 2:
         return []
-    scale = 1 + np.max(np.abs(points), axis=1)
     order = np.argsort(points[:, 0].real)
     key = points[order, 0].real
     parent = list(range(len(points)))
@@ -566,7 +567,8 @@ def duplicate_groups(points: np.ndarray, tol: float) -> list:
         b_ = a_ + 1
         while b_ < len(order) and key[b_] - key[a_] <= span:
             i, j = order[a_], order[b_]
-            if np.max(np.abs(points[i] - points[j])) <= tol * max(scale[i], scale[j]):
+            scale = 1 + np.maximum(np.abs(points[i]), np.abs(points[j]))
+            if np.all(np.abs(points[i] - points[j]) <= tol * scale):
                 parent[find(i)] = find(j)
             b_ += 1
     groups = {}

@@ -188,9 +188,9 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
             q = type(q)(**{**q.__dict__, "endpoint": x[0]})
             candidate = type(q)(**{**q.__dict__, "index": i, "status": status, "retried": "projective"})
             others = np.array([paths[j].endpoint for j in range(len(paths)) if j != i and paths[j].status == SUCCESS])
-            distinct = not len(others) or not np.any(
-                np.max(np.abs(others - candidate.endpoint), axis=1)
-                <= options.duplicate_tol * (1 + np.max(np.abs(candidate.endpoint))))
+            distinct = not len(others) or not np.any(np.all(  # each coordinate at its own scale
+                np.abs(others - candidate.endpoint)
+                <= options.duplicate_tol * (1 + np.maximum(np.abs(others), np.abs(candidate.endpoint))), axis=1))
             if (status == SUCCESS and distinct) or (paths[i].status in FAILURES and status not in FAILURES):
                 paths[i] = candidate
     if asked.retry_mpmath and hasattr(homs[0], "mp_evaluate_all"):
