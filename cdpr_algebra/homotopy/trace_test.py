@@ -12,8 +12,9 @@ Construction (the route of HomotopyContinuation.jl's ``verify_solution_completen
 2. W10 = C intersected with {l(x) = 0} for a random affine form l(x) = l_1 x_1 + ... + l_n x_n + l_{n+1}:
    the solutions of :class:`TraceSliceSystem` [F(x; p0 + s (q0 - p0)); l(x)] in the unknowns (x, s) with the
    parameters l, found by monodromy (:func:`.monodromy.monodromy_solve`) from one point (a point of W01
-   moved to s = 1, and a hyperplane through it moved to a random l), then re-solved at other random l until
-   the count agrees several times (:func:`trace_witnesses`);
+   moved to s = 1, and a hyperplane through it moved to a random l), then re-solved at other random l and
+   moved back, the union kept, until several such rounds add nothing (:func:`trace_witnesses`,
+   :func:`complete_witnesses`);
 3. the union S = (W01 x {0}) + W10 is the intersection of C with the member tau = 0 of the pencil
    {s l(x) = tau} (:class:`TracePencilSystem`); S is tracked to tau = +eps gamma and to tau = -eps gamma
    (gamma a random unit complex number) and the trace
@@ -48,7 +49,7 @@ from .results import STATUSES, SUCCESS
 from .tracker import track_paths
 
 __all__ = ["TraceSliceSystem", "TracePencilSystem", "TraceTestOptions", "TraceResult", "TraceTestResult",
-           "trace_witnesses", "compute_trace", "verify_solution_completeness", "random_direction"]
+           "distinct_points", "trace_witnesses", "complete_witnesses", "compute_trace", "verify_solution_completeness", "random_direction"]
 
 
 def _crandn(rng, *shape):
@@ -291,8 +292,8 @@ class TraceTestOptions:
     * ``direction_scale`` [1.0]: q0 = p0 + direction_scale (1 + |p0|) z, z standard complex normal;
     * ``witness_loops_no_progress`` [5]: loops without a new point that end the first W10 monodromy;
     * ``confirm_loops_no_progress`` [3]: the same for the re-solves at other random l;
-    * ``confirmations`` [3]: re-solves at other random l that must find the same count (at most
-      ``max_confirm_tries`` [8] tried; a larger count replaces the set and restarts the agreement count);
+    * ``confirmations`` [3]: rounds of :func:`complete_witnesses` in a row that must add nothing to W10 (at most
+      ``max_confirm_tries`` [8] rounds);
     * ``max_loops`` [200]: cap of every monodromy run;
     * ``solve`` [SolveOptions(retry_mpmath=False)]: tracking options of the monodromy loops and moves;
     * ``pencil`` [SolveOptions()]: tracking options of the pencil paths (arbitrary-precision retries included).
@@ -418,6 +419,47 @@ def _coordinates(system, coordinates, W01):
     return cs
 
 
+def distinct_points(system, parameters, X, floor: float = 1e-8, digits_lost: float = 100.0):
+    """Distinct solutions among points X of ``system`` at ``parameters``, with a duplicate test that accounts for
+    conditioning: after Newton refinement (:func:`.endgame.refine`), two points are one solution when they are
+    closer (max-norm, relative to 1 + |x|) than max(floor, digits_lost * 2.2e-16 * cond), cond being the scaled
+    condition number of dF/dx at either point (the accuracy double precision allows there).  (A fixed relative
+    tolerance such as monodromy's 1e-8 counts an ill-conditioned solution, cond ~ 1e10, found again around each
+    loop, many times.)  Returns (distinct refined points, the best-conditioned of each group; record of the merged
+    groups)."""
+    from .endgame import refine
+
+    X = np.asarray(X, dtype=complex).reshape(-1, system.n)
+    if not len(X):
+        return X, {"groups": [], "max_condition": None}
+    p = np.asarray(parameters, dtype=complex)
+    Xr, _, res, cond, _ = refine(ParameterHomotopy(system, p, p), X, 0.0)
+    cond = np.where(np.isfinite(cond), cond, 1e16)
+    scale = 1 + np.max(np.abs(Xr), axis=1)
+    tol = np.maximum(floor, digits_lost * 2.2e-16 * cond)
+    parent = list(range(len(Xr)))
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for i in range(len(Xr) - 1):
+        d = np.max(np.abs(Xr[i + 1:] - Xr[i]), axis=1) / np.maximum(scale[i + 1:], scale[i])
+        for j in np.flatnonzero(d <= np.maximum(tol[i + 1:], tol[i])) + i + 1:
+            parent[find(int(j))] = find(i)
+    groups = {}
+    for i in range(len(Xr)):
+        groups.setdefault(find(i), []).append(i)
+    keep = sorted(g[int(np.argmin(cond[g]))] for g in groups.values())
+    merged = [{"size": len(g), "norm": float(np.max(scale[g]) - 1), "condition": float(np.max(cond[g])),
+               "spread": float(np.max(np.abs(Xr[g] - Xr[g[0]])) / np.max(scale[g]))}
+              for g in groups.values() if len(g) > 1]
+    return Xr[keep], {"rule": f"relative distance <= max({floor:g}, {digits_lost:g} * 2.2e-16 * cond)",
+                      "groups": merged, "max_condition": float(np.max(cond)), "max_residual": float(np.max(res))}
+
+
 def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestOptions | None = None,
                     verbose: bool = False, coordinates=None):
     """W10 = C cut by l(x) = 0 for a random l (module doc, step 2).  Returns (W10, q0, l, record dict).
@@ -453,35 +495,69 @@ def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestO
     if paths[0].status != SUCCESS:
         raise RuntimeError(f"the first point of W10 could not be moved to a generic l ({paths[0].status})")
 
-    def mono(l, X, loops_np, s):
-        r = monodromy_solve(slice_, parameters=l, solutions=X, seed=s,
+    W, rec = complete_witnesses(slice_, l0, paths[0].endpoint[None, :], o, seed=seed, verbose=verbose, first=True)
+    record["moves"] += rec["moves"]
+    record["monodromy"] += rec["monodromy"]
+    record.update({k: v for k, v in rec.items() if k not in ("moves", "monodromy")})
+    record["seconds"] = time.perf_counter() - t0
+    return W, q0, np.asarray(l0), record
+
+
+def complete_witnesses(slice_, l, W, options: TraceTestOptions | None = None, seed: int = 0, verbose: bool = False,
+                       first: bool = False):
+    """Grow the witness set W of ``slice_`` (a :class:`TraceSliceSystem`) at the hyperplane l by monodromy.
+
+    With ``first``, a monodromy run at l from W (``witness_loops_no_progress``).  Then rounds: W is moved to
+    another random hyperplane k, completed there by monodromy (``confirm_loops_no_progress``), and the result is
+    moved back to l and united with W (distinct points by :func:`distinct_points`); the points a move loses
+    (ill-conditioned ones fail now and then) stay in W.  The rounds stop when ``confirmations`` rounds in a row
+    add nothing (at most ``max_confirm_tries``).  Returns (W at l, record dict)."""
+    o = options or TraceTestOptions()
+    rng = np.random.default_rng(seed + 1)
+    l = np.asarray(l, dtype=complex)
+    record = {"moves": [], "monodromy": [], "union_counts": []}
+
+    def mono(lk, X, loops_np, s):
+        r = monodromy_solve(slice_, parameters=lk, solutions=X, seed=s,
                             options=MonodromyOptions(max_loops_no_progress=loops_np, max_loops=o.max_loops,
                                                      solve=o.solve))
-        record["monodromy"].append({**r.to_dict(), "start_points": len(np.atleast_2d(X))})
+        D, merged = distinct_points(slice_, lk, r.solutions)
+        record["monodromy"].append({**r.to_dict(), "count_raw": int(len(r.solutions)), "count": int(len(D)),
+                                    "merged": merged["groups"], "start_points": len(np.atleast_2d(X))})
         if verbose:
-            print(f"  W10 monodromy: {r.summary_line()}", flush=True)
-        return r
+            print(f"  W10 monodromy: {r.summary_line()}; {len(D)} distinct", flush=True)
+        return D
 
-    best = mono(l0, paths[0].endpoint[None, :], o.witness_loops_no_progress, seed)
-    best_l = l0
-    agreed = 0
-    tries = 0
-    while agreed < o.confirmations and tries < o.max_confirm_tries:
+    def move(X, la, lb, what, s):
+        paths = _track(slice_, X, la, lb, o.solve, s)
+        Y = np.array([p.endpoint for p in paths if p.status == SUCCESS]).reshape(-1, slice_.n)
+        record["moves"].append({"from": what, "paths": len(paths), "success": int(len(Y))})
+        return Y
+
+    W = np.asarray(W, dtype=complex).reshape(-1, slice_.n)
+    if first:
+        W = mono(l, W, o.witness_loops_no_progress, seed)
+    record["union_counts"].append(int(len(W)))
+    stable = tries = 0
+    while stable < o.confirmations and tries < o.max_confirm_tries:
         tries += 1
-        k = _crandn(rng, k1)
-        moved = _track(slice_, best.solutions, best_l, k, o.solve, seed + tries)
-        X = np.array([p.endpoint for p in moved if p.status == SUCCESS]).reshape(-1, slice_.n)
-        record["moves"].append({"from": "W10 to another l", "paths": len(moved), "success": int(len(X))})
+        k = _crandn(rng, slice_.m)
+        X = move(W, l, k, "W10 to another l", seed + tries)
         if not len(X):
+            stable = 0
             continue
-        r = mono(k, X, o.confirm_loops_no_progress, seed + 100 + tries)
-        if len(r.solutions) == len(best.solutions):
-            agreed += 1
-        elif len(r.solutions) > len(best.solutions):
-            best, best_l, agreed = r, k, 0
-    record.update({"count": int(len(best.solutions)), "agreements": agreed, "confirm_tries": tries,
-                   "seconds": time.perf_counter() - t0})
-    return np.array(best.solutions), q0, np.asarray(best_l), record
+        R = mono(k, X, o.confirm_loops_no_progress, seed + 100 + tries)
+        back = move(R, k, l, "back to l", seed + 200 + tries)
+        U, _ = distinct_points(slice_, l, np.concatenate([W, back]))
+        if verbose:
+            print(f"  W10 round {tries}: {len(R)} at another l, {len(back)} moved back, union {len(U)} "
+                  f"(was {len(W)})", flush=True)
+        stable = 0 if len(U) > len(W) else stable + 1
+        if len(U) > len(W):
+            W = U
+        record["union_counts"].append(int(len(W)))
+    record.update({"count": int(len(W)), "stable_rounds": stable, "rounds": tries})
+    return W, record
 
 
 def compute_trace(system, p0, q0, l, W01, W10, options: TraceTestOptions | None = None, seed: int = 0,
