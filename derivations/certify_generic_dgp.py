@@ -12,13 +12,21 @@ it computes, and drops every old section when the stored set changed):
 * ``trace_test`` -- the multiprojective trace test (:mod:`cdpr_algebra.homotopy.trace_test`) of the stored set
   W01 at its parameters p0: the additional witnesses W10 (the curve F(x; p0 + s (q0 - p0)) = 0 cut by a
   random hyperplane l(x) = 0, by monodromy, re-solved at other random l until the count agrees), then the
-  trace of W01 x {0} + W10 along the pencil s l(x) = tau.  Recorded: the hashes of the set it certifies,
+  trace of W01 x {0} + W10 along the pencil s l(x) = tau.  The test works in the 12 pose unknowns (p, u, v, w;
+  ``--coordinates all`` for every unknown): they separate the solutions (checked on W01) and the tensions, which
+  follow linearly from the pose, have poles along the curve that multiply the size of W10 (m = 6: 327 points
+  in the pose coordinates, more than 1400 and still growing when stopped in all of them).  Recorded: the hashes of the set it certifies,
   q0, l, W10, gamma, eps, the trace and its relative size, the tolerance, every path outcome, the
   monodromy runs, the seed and the seconds.  ``count`` is the size of the certified set.
 * ``monodromy_from_scratch`` -- monodromy from ONE seed solution of a new random complex instance (the
   construction of ``solve_generic_dgp.py``) with NO target count, until ``--loops-no-progress`` (10)
-  consecutive loops add nothing.  The count is the one the run finds.  The stored set is then moved to the
-  new instance by a parameter homotopy and matched against the set found there (``stored_matched``).
+  consecutive loops add nothing.  ``count_raw`` is the number of points the run returns, ``count`` the number of
+  distinct solutions among them by a duplicate test that accounts for conditioning
+  (:func:`cdpr_algebra.homotopy.trace_test.distinct_points`; monodromy's own fixed 1e-8 counts an
+  ill-conditioned solution once per loop that finds it again: m = 3, seed 1, one solution of condition 6e9 came
+  back 31 times).  The stored set is then moved to the new instance by parameter homotopies and matched against
+  the set found there (``moved_unmatched`` must be 0: a stored point outside the found set would be a solution
+  the run from scratch missed).
 * ``phc`` (``--phc``, only where ``phc`` is installed) -- PHCpack's blackbox ``phc -b`` on a random complex
   instance of the m-cable system (the whole system, so also the solutions with some lam_i = 0, another
   component): mixed volume, regular solutions, those with every lam_i nonzero and those with some lam_i = 0,
@@ -49,7 +57,9 @@ from cdpr_algebra.homotopy.endgame import SolveOptions  # noqa: E402
 from cdpr_algebra.homotopy.monodromy import MonodromyOptions, load_instance, monodromy_solve  # noqa: E402
 from cdpr_algebra.homotopy.solve import solve_parameter_homotopy  # noqa: E402
 from cdpr_algebra.homotopy.tracker import TrackerOptions  # noqa: E402
-from cdpr_algebra.homotopy.trace_test import TraceTestOptions, verify_solution_completeness  # noqa: E402
+from cdpr_algebra.homotopy.trace_test import (TraceSliceSystem, TraceTestOptions,  # noqa: E402
+                                              complete_witnesses, compute_trace, distinct_points,
+                                              verify_solution_completeness)
 
 FORMAT = "cdpr_algebra.dgp_generic_completeness"
 FORMAT_VERSION = 1
@@ -81,17 +91,26 @@ def _match(A, B, tol=1e-6):
     return int(close.any(axis=1).sum()), int(close.any(axis=0).sum())
 
 
-def _move_stored(m, p_from, X, p_to, seed):
+def _move_stored(m, p_from, X, p_to, seed, rounds=3):
     """The stored set moved to parameters p_to (gamma-trick parameter homotopy, compiled tracker, the engine's
-    projective double-precision retries): (endpoints of the successful paths, outcome counts)."""
+    projective double-precision retries); paths that fail are tracked again with another gamma (another route),
+    ``rounds`` in all.  Returns (endpoints of the successful paths, outcome counts of each round)."""
     fam = fast_family(m)
-    tr = solve_parameter_homotopy(fam, p_from, X, p_to, seed=seed, gamma=True,
-                                  options=SolveOptions(retry_mpmath=False)).track
-    counts = {}
-    for p in tr.paths:
-        counts[p.status] = counts.get(p.status, 0) + 1
-    Y = np.array([p.endpoint for p in tr.paths if p.status == "success"]).reshape(-1, fam.n)
-    return Y, counts
+    todo = np.arange(len(X))
+    ends, rounds_rec = [], []
+    for r in range(rounds):
+        if not len(todo):
+            break
+        tr = solve_parameter_homotopy(fam, p_from, X[todo], p_to, seed=seed + r, gamma=True,
+                                      options=SolveOptions(retry_mpmath=False)).track
+        counts = {}
+        for p in tr.paths:
+            counts[p.status] = counts.get(p.status, 0) + 1
+        rounds_rec.append(counts)
+        ok = np.array([p.status == "success" for p in tr.paths])
+        ends += [p.endpoint for p in tr.paths if p.status == "success"]
+        todo = todo[~ok]
+    return np.array(ends).reshape(-1, fam.n), rounds_rec
 
 
 POSE = list(range(12))  # p, u, v, w: the tensions lam_i follow linearly from the pose (and have poles on the curve)
@@ -102,7 +121,7 @@ def trace_options():
     point it adds is refined by Newton, so a coarser step only risks missing points, which the trace would show);
     the pencil paths with the engine's defaults."""
     return TraceTestOptions(solve=SolveOptions(tracker=TrackerOptions(predictor_tol=1e-4), retry_mpmath=False),
-                            witness_loops_no_progress=5, confirm_loops_no_progress=2, confirmations=2)
+                            witness_loops_no_progress=5, confirm_loops_no_progress=3, confirmations=2)
 
 
 def run_trace_test(m, p, X, seed, coordinates, verbose=True):
@@ -122,6 +141,39 @@ def run_trace_test(m, p, X, seed, coordinates, verbose=True):
     return out
 
 
+def _uc(d):
+    return np.asarray(d["re"], dtype=float) + 1j * np.asarray(d["im"], dtype=float)
+
+
+def resume_trace_test(m, p, X, prev, seed, grow=True, verbose=True):
+    """Continue a trace test that did not pass: the recorded W10 (same q0, l, coordinates) grown by
+    :func:`complete_witnesses` rounds (unless ``grow`` is False), then the trace again.  The earlier runs stay in
+    ``history``."""
+    fam = fast_family(m)
+    o = trace_options()
+    t0 = time.perf_counter()
+    cs = prev["coordinates"]
+    q0, l = _uc(prev["q0"]), _uc(prev["l"])
+    W10 = _uc(prev["W10"]).reshape(prev["W10_count"], fam.n + 1)
+    slice_ = TraceSliceSystem(fam, p, q0 - p, cs)
+    if grow:
+        W, rec = complete_witnesses(slice_, l, W10, o, seed=seed + 1000 * (1 + len(prev.get("history", []))),
+                                    verbose=verbose)
+    else:
+        W, rec = W10, {"moves": [], "monodromy": [], "count": int(len(W10)), "note": "trace recomputed only"}
+    tr = compute_trace(fam, p, q0, l, X, W, o, seed=seed, coordinates=cs)
+    hist = prev.get("history", []) + [{"W10_count": prev["W10_count"], "status": prev["status"],
+                                       "relative": prev["trace"]["relative"], "seconds": prev["seconds"],
+                                       "witnesses": prev["witnesses"], "trace_outcomes": prev["trace"]["outcomes"]}]
+    out = {**prev, "status": tr.status, "W10_count": int(len(W)), "W10": _c(W), "witnesses": rec,
+           "trace": tr.to_dict(), "options": o.to_dict(), "seconds": time.perf_counter() - t0, "history": hist}
+    if verbose:
+        print(f"m = {m}: trace test (resumed from |W10| = {prev['W10_count']}) {tr.status}: |W01| = {len(X)}, "
+              f"|W10| = {len(W)}, relative trace {tr.relative:.2e} (tol {tr.tol:.0e}; one point missing would give "
+              f">= {tr.detection:.1e}), {out['seconds']:.0f} s", flush=True)
+    return out
+
+
 def run_monodromy(m, seed, loops_no_progress, p_stored, X_stored, verbose=True):
     from solve_generic_dgp import complex_rotation, regular_robot  # noqa: E402
     from cdpr_algebra.dgp_equations import encode
@@ -136,15 +188,20 @@ def run_monodromy(m, seed, loops_no_progress, p_stored, X_stored, verbose=True):
     guess = base + 0.3 * (np.abs(base) + 0.1) * (rng.normal(size=base.size) + 1j * rng.normal(size=base.size))
     o = MonodromyOptions(target_solutions_count=None, max_loops_no_progress=loops_no_progress, max_loops=400)
     res = monodromy_solve(fam, seed=seed, x0=x0, p_guess=guess, options=o)
-    out = {**res.to_dict(), "max_loops_no_progress": loops_no_progress, "target_solutions_count": None,
+    D, merged = distinct_points(fam, res.parameters, res.solutions)  # monodromy's own test is blind to conditioning
+    out = {**res.to_dict(), "count_raw": int(len(res.solutions)), "count": int(len(D)), "merge": merged,
+           "max_loops_no_progress": loops_no_progress, "target_solutions_count": None,
            "parameters": _c(res.parameters)}
     Y, counts = _move_stored(m, p_stored, X_stored, res.parameters, seed)
-    a, b = _match(Y, res.solutions)
-    out["stored_moved"] = {"paths": int(len(X_stored)), "outcomes": counts, "stored_matched": a,
-                           "found_matched": b}
+    a, b = _match(Y, D)
+    # every stored point that arrives must be one of the points found (else the run from scratch missed it);
+    # found points not reached are those whose stored path failed (every round), or reached twice by a retry
+    out["stored_moved"] = {"paths": int(len(X_stored)), "outcomes": counts, "arrived": int(len(Y)),
+                           "stored_matched": a, "moved_unmatched": int(len(Y) - a), "found_matched": b}
     if verbose:
-        print(f"m = {m}: {res.summary_line()}; stored set moved there: {a} of {len(X_stored)} match, "
-              f"{b} of {len(res.solutions)} found points matched", flush=True)
+        print(f"m = {m}: {res.summary_line()}; {len(D)} distinct after the conditioning-aware merge "
+              f"(max cond {merged['max_condition']:.1e}); stored set moved there: {a} of {len(X_stored)} match, "
+              f"{b} of {len(D)} found points matched", flush=True)
     return out
 
 
@@ -182,8 +239,8 @@ def run_phc(m, seed, timeout, p_stored, X_stored, verbose=True):
     a, b = _match(Y, S[~zero])
     out.update({"status": "finished", "regular": int(len(S)), "regular_real": res["real"],
                 "regular_all_lam_nonzero": int((~zero).sum()), "regular_some_lam_zero": int(zero.sum()),
-                "stored_moved": {"paths": int(len(X_stored)), "outcomes": counts, "stored_matched": a,
-                                 "phc_matched": b}})
+                "stored_moved": {"paths": int(len(X_stored)), "outcomes": counts, "arrived": int(len(Y)),
+                                 "stored_matched": a, "moved_unmatched": int(len(Y) - a), "phc_matched": b}})
     if verbose:
         print(f"m = {m}: phc -b {res['wall']:.0f} s, mixed volume {res['paths']}, {len(S)} regular: "
               f"{int((~zero).sum())} with every lam_i != 0, {int(zero.sum())} with some lam_i = 0; stored set moved "
@@ -200,6 +257,9 @@ def main(argv=None) -> int:
     ap.add_argument("--phc", action="store_true", help="also PHCpack's blackbox on a random complex instance")
     ap.add_argument("--phc-timeout", type=float, default=3 * 3600.0)
     ap.add_argument("--loops-no-progress", type=int, default=10)
+    ap.add_argument("--resume", action="store_true",
+                    help="continue a recorded trace test that failed or was undecided (grow its W10, trace again)")
+    ap.add_argument("--retrace", action="store_true", help="with --resume: recompute the trace only")
     ap.add_argument("--coordinates", choices=["pose", "all"], default="pose",
                     help="unknowns the trace test works in: the 12 pose unknowns (default; they separate the "
                          "solutions, checked) or all")
@@ -219,7 +279,10 @@ def main(argv=None) -> int:
                                     "file_sha256": hashlib.sha256(path.read_bytes()).hexdigest(),
                                     "count": int(len(X)), "unknowns": int(X.shape[1])},
                      "command": "python derivations/certify_generic_dgp.py --m " + str(m)})
-        if "trace" in sections:
+        if "trace" in sections and args.resume and cert.get("trace_test", {}).get("status") in ("failed", "undecided"):
+            cert["trace_test"] = resume_trace_test(m, p, X, cert["trace_test"], args.seed, grow=not args.retrace)
+            status |= cert["trace_test"]["status"] != "passed"
+        elif "trace" in sections:
             cert["trace_test"] = run_trace_test(m, p, X, args.seed, POSE if args.coordinates == "pose" else None)
             status |= cert["trace_test"]["status"] != "passed"
         if "monodromy" in sections:

@@ -1,0 +1,200 @@
+"""Completeness of the stored generic DGP solution sets (issue 15 item 3): the recorded trace-test certificates
+(``cdpr_algebra/data/dgp_generic_m{m}_completeness.json``, written by ``derivations/certify_generic_dgp.py``)
+match the sets they certify; the trace is recomputed from the recorded witnesses for a small case; negative
+controls (a point removed) make the trace clearly nonzero; the trace test on a small family with a known count."""
+
+from __future__ import annotations
+
+import importlib.util
+import itertools
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from cdpr_algebra.dgp import available_m, fast_family, generic_path
+from cdpr_algebra.homotopy import PolynomialSystem, SolveOptions, TrackerOptions
+from cdpr_algebra.homotopy.monodromy import load_instance, monodromy_solve
+from cdpr_algebra.homotopy.trace_test import (TracePencilSystem, TraceSliceSystem, TraceTestOptions, compute_trace,
+                                              verify_solution_completeness)
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _certify_module():
+    spec = importlib.util.spec_from_file_location("certify_generic_dgp", ROOT / "derivations" / "certify_generic_dgp.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+CERT = _certify_module()
+
+
+def _uc(d):
+    return np.asarray(d["re"], dtype=float) + 1j * np.asarray(d["im"], dtype=float)
+
+
+def certificate(m):
+    path = CERT.certificate_path(m)
+    assert path.exists(), f"no completeness certificate for the stored m = {m} set (run {path.name}'s derivation)"
+    return json.loads(path.read_text())
+
+
+def _recorded(m):
+    """(system, p0, W01, q0, l, W10, trace record) of the certificate of m."""
+    p, X, _ = load_instance(generic_path(m))
+    tt = certificate(m)["trace_test"]
+    W10 = _uc(tt["W10"]).reshape(tt["W10_count"], X.shape[1] + 1)
+    return fast_family(m), p, X, _uc(tt["q0"]), _uc(tt["l"]), W10, tt
+
+
+@pytest.mark.parametrize("m", [2, 3, 4, 5, 6])
+def test_certificate_matches_stored_set_and_passed(m):
+    """The certificate is for the stored set (hash of its parameters and solutions), its trace is below the
+    tolerance with every pencil path regular and distinct, and the monodromy run from scratch without a target
+    count found as many distinct solutions as the stored set, every stored point moved there being one of them."""
+    if m not in available_m():
+        pytest.skip(f"no stored generic set for m = {m}")
+    cert = certificate(m)
+    p, X, _ = load_instance(generic_path(m))
+    assert cert["stored_set"]["data_sha256"] == CERT.data_hash(p, X)
+    tt = cert["trace_test"]
+    assert tt["status"] == "passed" and tt["count"] == len(X) == cert["count"]
+    tr = tt["trace"]
+    assert tr["status"] == "passed" and tr["relative"] <= tr["tol"] <= 1e-6
+    trace = _uc(tr["trace"])
+    assert np.max(np.abs(trace)) / tr["scale"] == pytest.approx(tr["relative"], rel=1e-9, abs=1e-300)
+    assert tr["points"] == len(X) + tt["W10_count"]
+    last = tr["outcomes"][-1]  # the attempt the trace comes from: every path regular, no duplicate endpoint
+    for side in ("plus", "minus"):
+        assert last[side]["success"] == tr["points"]
+        assert sum(v for k, v in last[side].items() if k != "success") == 0
+    # separation: the smallest second difference of a single point (the trace of the set without it) is far above
+    # the measured trace and above the tolerance
+    assert tr["detection"] > max(100 * tr["relative"], tr["tol"])
+    mono = cert["monodromy_from_scratch"]
+    assert mono["target_solutions_count"] is None and mono["stopped_by"] == "no_progress"
+    assert mono["count"] == len(X) <= mono["count_raw"]
+    moved = mono["stored_moved"]  # the stored set moved to the new instance: every arriving point was found there
+    assert moved["moved_unmatched"] == 0 and moved["stored_matched"] == moved["arrived"]
+    first = moved["outcomes"][0].get("success", 0)  # endpoints of one homotopy's paths are distinct solutions
+    assert moved["found_matched"] >= first >= len(X) - 5
+
+
+def test_recomputed_trace_m2():
+    """The trace of the stored m = 2 set and the recorded W10, recomputed along the recorded pencil, is ~0;
+    the recorded W10 lies on the recorded slice."""
+    if 2 not in available_m():
+        pytest.skip("no stored m = 2 set")
+    fam, p, X, q0, l, W10, tt = _recorded(2)
+    sl = TraceSliceSystem(fam, p, q0 - p, tt["coordinates"])
+    assert np.max(np.abs(sl.evaluate(W10, l))) <= 1e-8 * (1 + np.max(np.abs(W10)))
+    o = TraceTestOptions(eps=tt["trace"]["eps"], tol=tt["trace"]["tol"], attempts=1)
+    g = tt["trace"]["gamma"]
+    tr = compute_trace(fam, p, q0, l, X, W10, o, gamma=complex(g["re"], g["im"]), coordinates=tt["coordinates"])
+    assert tr.status == "passed", tr.outcomes
+    assert tr.relative <= o.tol
+
+
+@pytest.mark.parametrize("drop", ["W01", "W10"])
+def test_trace_detects_a_missing_point_m2(drop):
+    """Negative control: the stored m = 2 set (or W10) with one point removed gives a clearly nonzero trace."""
+    if 2 not in available_m():
+        pytest.skip("no stored m = 2 set")
+    fam, p, X, q0, l, W10, tt = _recorded(2)
+    o = TraceTestOptions(eps=tt["trace"]["eps"], tol=tt["trace"]["tol"], attempts=1)
+    g = complex(tt["trace"]["gamma"]["re"], tt["trace"]["gamma"]["im"])
+    k = 5
+    if drop == "W01":
+        tr = compute_trace(fam, p, q0, l, np.delete(X, k, axis=0), W10, o, gamma=g, coordinates=tt["coordinates"])
+    else:
+        tr = compute_trace(fam, p, q0, l, X, np.delete(W10, k, axis=0), o, gamma=g, coordinates=tt["coordinates"])
+    assert tr.status == "failed"
+    assert tr.relative > 100 * o.tol
+
+
+# ---------------------------------------------------------------------------------------------
+def _dense_quadrics(n):
+    """n generic quadrics in n unknowns, every coefficient a parameter: 2^n solutions (Bezout, generic)."""
+    xs = sp.symbols(f"x0:{n}")
+    mons = [sp.Mul(*[xs[i] ** e[i] for i in range(n)]) for e in itertools.product(range(3), repeat=n) if sum(e) <= 2]
+    ps, eqs = [], []
+    for i in range(n):
+        cs = sp.symbols(f"c{i}_0:{len(mons)}")
+        ps += cs
+        eqs.append(sum(c * mo for c, mo in zip(cs, mons)))
+    return PolynomialSystem(eqs, xs, ps, name=f"dense_quadrics{n}")
+
+
+@pytest.fixture(scope="module")
+def quadrics():
+    S = _dense_quadrics(2)
+    r = monodromy_solve(S, seed=1)
+    return S, r.parameters, r.solutions
+
+
+def test_trace_test_small_family_passes_with_the_full_set(quadrics):
+    S, p, X = quadrics
+    assert len(X) == 4  # Bezout number of two generic conics
+    res = verify_solution_completeness(S, p, X, seed=3)
+    assert res.status == "passed" and res.trace.relative <= res.trace.tol
+    # W10 lies on the curve and on the hyperplane
+    assert np.max(np.abs(TraceSliceSystem(S, p, res.q0 - p).evaluate(res.W10, res.l))) < 1e-9
+    for k in range(len(X)):  # and fails with any point removed
+        tr = compute_trace(S, p, res.q0, res.l, np.delete(X, k, axis=0), res.W10, seed=3)
+        assert tr.status == "failed" and tr.relative > 100 * tr.tol
+    tr = compute_trace(S, p, res.q0, res.l, X, res.W10[1:], seed=3)
+    assert tr.status == "failed"
+
+
+def test_trace_test_lost_paths_are_undecided(quadrics):
+    """Pencil paths that cannot be tracked (a step budget of 1) make the test undecided, never passed."""
+    S, p, X = quadrics
+    rng = np.random.default_rng(0)
+    q0 = p + rng.normal(size=p.size) + 1j * rng.normal(size=p.size)
+    l = rng.normal(size=3) + 1j * rng.normal(size=3)
+    bad = SolveOptions(tracker=TrackerOptions(max_steps=1), retry_tight=False, retry_mpmath=False)
+    tr = compute_trace(S, p, q0, l, X, np.zeros((0, 3)), TraceTestOptions(pencil=bad, attempts=2))
+    assert tr.status == "undecided" and not tr.passed and len(tr.outcomes) == 2
+    assert all(o["plus"]["success"] < len(X) for o in tr.outcomes)
+
+
+def test_slice_and_pencil_jacobians_by_finite_differences():
+    S = _dense_quadrics(2)
+    rng = np.random.default_rng(1)
+    p0 = rng.normal(size=S.m) + 1j * rng.normal(size=S.m)
+    v = rng.normal(size=S.m) + 1j * rng.normal(size=S.m)
+    l = rng.normal(size=3) + 1j * rng.normal(size=3)
+    y = rng.normal(size=(4, 3)) + 1j * rng.normal(size=(4, 3))
+    h = 1e-7
+    for sysm, par in ((TraceSliceSystem(S, p0, v), l), (TracePencilSystem(S, p0, v, l), np.array([0.3 - 0.2j]))):
+        G, J, JP = sysm.evaluate_all(y, par)
+        for j in range(3):
+            e = np.zeros(3)
+            e[j] = h
+            fd = (sysm.evaluate(y + e, par) - sysm.evaluate(y - e, par)) / (2 * h)
+            np.testing.assert_allclose(J[:, :, j], fd, atol=1e-6)
+        for k in range(len(par)):
+            e = np.zeros(len(par), dtype=complex)
+            e[k] = h
+            fd = (sysm.evaluate(y, par + e) - sysm.evaluate(y, par - e)) / (2 * h)
+            np.testing.assert_allclose(JP[:, :, k], fd, atol=1e-6)
+
+
+def test_trace_test_on_a_projection():
+    """The test in a subset of the unknowns (the image of the curve under a projection that separates the
+    solutions): passes with the full set, fails with a point removed; a projection that merges solutions is
+    refused."""
+    S = _dense_quadrics(3)
+    r = monodromy_solve(S, seed=1)
+    p, X = r.parameters, r.solutions
+    assert len(X) == 8
+    res = verify_solution_completeness(S, p, X, seed=2, coordinates=[0, 1])
+    assert res.status == "passed" and list(res.coordinates) == [0, 1] and len(res.l) == 3
+    tr = compute_trace(S, p, res.q0, res.l, X[1:], res.W10, seed=2, coordinates=[0, 1])
+    assert tr.status == "failed" and tr.relative > 100 * tr.tol
+    with pytest.raises(ValueError, match="separate"):
+        compute_trace(S, p, res.q0, res.l, np.concatenate([X, X[:1] + [0, 0, 1]]), res.W10, coordinates=[0, 1])
