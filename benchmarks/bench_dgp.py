@@ -43,13 +43,14 @@ def bench(path, repeat, jobs):
         times.append(time.perf_counter() - t0)
     counts = {m: len(res.by_m(m)) for m in range(1, 7)}
     skipped = sum(1 for s in res.subproblems if s.skipped)
-    failed = sum(s.failed_paths for s in res.subproblems)
+    o = res.outcomes()
     paths = sum(s.paths for s in res.subproblems)
     print(f"{robot.name}: first run {first:.2f} s, median of {repeat}: {statistics.median(times):.2f} s "
           f"(range {min(times):.2f}-{max(times):.2f} s) "
           f"(jobs={jobs}); {len(res.solutions)} admissible ({', '.join(f'm={m}: {c}' for m, c in counts.items() if c)}), "
-          f"{len(res.stable)} stable; {len(res.subproblems)} subproblems ({skipped} skipped), {paths} paths, "
-          f"{failed} failed", flush=True)
+          f"{len(res.stable)} stable; {len(res.subproblems)} subproblems ({skipped} skipped, "
+          f"{len(res.incomplete)} incomplete), {paths} paths: {o['regular']} regular, {o['singular']} singular, "
+          f"{o['at_infinity']} at infinity, {o['failed']} failed", flush=True)
 
 
 def phc_compare(path, cable_sets, repeat, timeout):
@@ -73,7 +74,7 @@ def phc_compare(path, cable_sets, repeat, timeout):
         res = phc_run(taut_family(len(cables)), target, timeout=timeout)
         taut = [c + 1 for c in cables]
         ours = (f"ours {statistics.median(ts):.3f} s ({sub.paths} paths, {sub.finite} finite, {sub.real} real, "
-                f"{sub.admissible} admissible, {sub.failed_paths} failed)")
+                f"{sub.admissible} admissible, {sub.outcomes['at_infinity']} at infinity, {sub.failed_paths} failed)")
         if res is None:
             print(f"{robot.name} taut {taut}: {ours}; phc: not installed (apt-get install -y phcpack)", flush=True)
         elif res["timeout"]:

@@ -1,17 +1,18 @@
-"""Issue 4, item 4: a subproblem with failed paths is re-run with a new gamma, and paths that fail again in
-double precision are tracked in arbitrary precision before anything is reported.
+"""Issue 4, item 4: with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), paths that fail in double
+precision are tracked in arbitrary precision before anything is reported.
 
 Forced here: every double-precision attempt (affine and projective) of one path of a 2-cable subproblem of seed 000
 Test 1 reports a failed step; the subproblem still reports every solution of an ordinary run, and no failed path.
 """
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import cdpr_algebra.homotopy.endgame as eg
-from cdpr_algebra.dgp import _generic, lengths_and_taut_sets, solve_taut_set
+from cdpr_algebra.dgp import _generic, default_options, lengths_and_taut_sets, solve_taut_set
 from cdpr_algebra.homotopy.results import STEP_TOO_SMALL
 from cdpr_algebra.robot import load_robot
 
@@ -47,8 +48,8 @@ def test_failed_path_is_tracked_in_arbitrary_precision(monkeypatch):
 
     monkeypatch.setattr(eg, "track_segment", failing)
     monkeypatch.setattr(eg, "mp_track", counting_mp)  # the arbitrary-precision tracker behind eg.mp_path
-    sub, sols = solve_taut_set(robot, rho, cables, certify=False)
-    assert calls["mp"] == 1  # the one path, once, in the re-run
+    sub, sols = solve_taut_set(robot, rho, cables, certify=False, options=replace(default_options(), retry_mpmath=True))
+    assert calls["mp"] == 1  # the one path, once
     assert sub.failed_paths == 0 and sub.finite == sub0.finite and sub.real == sub0.real
     assert len(sols) == len(sols0)
     for a, b in zip(sorted(sols, key=lambda s: tuple(s.position)), sorted(sols0, key=lambda s: tuple(s.position))):
