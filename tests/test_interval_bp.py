@@ -384,7 +384,7 @@ def _crosscheck_all_agree(name):
     comps = tuple(compare_taut_set(robot, rho, c, interval_result=s) for c, s in zip(sets, subs))
     res = CrosscheckResult(robot.name, rho, comps, 0.0)
     assert len(comps) == 63
-    assert res.agree is not False, crosscheck_table(res)
+    assert not res.disagreements, crosscheck_table(res)
     for c in comps:
         assert c.agree is True or (c.agree is None and c.homotopy_failed_paths > 0), crosscheck_table(res)
         assert c.homotopy == c.interval and c.undecided == 0 and not c.homotopy_only and not c.interval_only
