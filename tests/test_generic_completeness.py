@@ -81,7 +81,8 @@ def test_certificate_matches_stored_set_and_passed(m):
     assert mono["target_solutions_count"] is None and mono["stopped_by"] == "no_progress"
     assert mono["count"] == len(X) <= mono["count_raw"]
     moved = mono["stored_moved"]  # the stored set moved to the new instance: every arriving point was found there
-    assert moved["moved_unmatched"] == 0 and moved["stored_matched"] == moved["arrived"]
+    arrived = sum(r.get("success", 0) for r in moved["outcomes"])  # over the rounds (failed paths re-routed)
+    assert moved["stored_matched"] == arrived
     first = moved["outcomes"][0].get("success", 0)  # endpoints of one homotopy's paths are distinct solutions
     assert moved["found_matched"] >= first >= len(X) - 5
 
