@@ -433,6 +433,59 @@ def certify_dgp_solutions(robot, solutions, lengths=None, box_rtol: float = BOX_
     return out
 
 
+def certify_endpoints(robot, lengths, groups) -> list:
+    """Krawczyk boxes of complex DGP roots (issue 15, item 4), for several taut sets with the same m >= 2 at once.
+
+    ``groups``: list of (0-based taut ``cables``, Z (N, 12 + m) complex roots of their taut system in world
+    coordinates (p, u, v, w, lam)); ``lengths``: all n (None: the robot's).  One vectorized certification over
+    every root of every group (each row with the constants of its own taut set).  Returns, per group,
+    (:class:`.complex_krawczyk.ComplexRootBoxes`, overlapping (N,) bool): each root proven unique in its box of
+    C^(12+m) (real or non-real proven where decidable), and the proven boxes meeting another proven box of the
+    same group (those roots are not proven distinct).  Constants: the robot's floats exactly, Q d and rho_i^2
+    enclosed."""
+    from .complex_krawczyk import ComplexRootBoxes, certify_complex_roots, overlapping
+    from .interval_boxes import Interval
+
+    groups = [(list(map(int, c)), np.asarray(Z, dtype=complex).reshape(len(Z), 12 + len(c))) for c, Z in groups]
+    if not groups:
+        return []
+    m = len(groups[0][0])
+    if any(len(c) != m for c, _ in groups) or m < 2:
+        raise ValueError("certify_endpoints: every group needs the same number m >= 2 of taut cables")
+    rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
+    rows = np.concatenate([np.repeat(np.asarray(c)[None], len(Z), axis=0) for c, Z in groups]).reshape(-1, m)
+    Z = np.concatenate([Z for _, Z in groups]).reshape(-1, 12 + m)
+    g = [float(c) for c in robot.com]
+    f_float = [robot.load * float(c) for c in robot.load_direction]
+    f_iv = [Interval.point(robot.load) * float(c) for c in robot.load_direction]
+
+    def rigorous(x, r, jac):  # the constants of the taut sets of the rows r, exact floats, rho^2 enclosed
+        cab = rows[r]
+        A = [[robot.base[cab[:, i], k] for k in range(3)] for i in range(m)]
+        b = [[robot.platform[cab[:, i], k] for k in range(3)] for i in range(m)]
+        rho2 = [Interval.point(rho[cab[:, i]]).sqr() for i in range(m)]
+        return taut_system(x, A, b, g, f_iv, rho2, jacobian=jac)
+
+    def approximate(x, r, jac):
+        cab = rows[r]
+        A = [[robot.base[cab[:, i], k] for k in range(3)] for i in range(m)]
+        b = [[robot.platform[cab[:, i], k] for k in range(3)] for i in range(m)]
+        rho2 = [rho[cab[:, i]] ** 2 for i in range(m)]
+        return taut_system(x, A, b, g, f_float, rho2, jacobian=jac)
+
+    boxes = certify_complex_roots(rigorous, approximate, Z, _scales(robot, m, range(12 + m), robot.size))
+    out, k0 = [], 0
+    for _, Zg in groups:
+        sl = slice(k0, k0 + len(Zg))
+        k0 += len(Zg)
+        bg = ComplexRootBoxes(boxes.proven[sl], boxes.lo[sl], boxes.hi[sl], boxes.real[sl], boxes.nonreal[sl],
+                              boxes.center[sl], boxes.reason[sl])
+        over = np.zeros(len(Zg), bool)
+        over[bg.proven] = overlapping(bg.lo[bg.proven], bg.hi[bg.proven])
+        out.append((bg, over))
+    return out
+
+
 # --------------------------------------------------------------------------------------------- IGP
 def certify_igp_orientation(robot, rotation, position, tensions, lengths, box_rtol: float = BOX_RTOL) -> Certificate:
     """IGP with assigned ``rotation`` (seed 004 Sec. 3): unknowns (p, lam), force and moment balance (6 x 6).

@@ -9,8 +9,8 @@
     cdpr crosscheck ROBOT [--lengths L1 .. Ln] [--taut C1 .. Cm] [--json]     (see cli_crosscheck.py)
 
 Exit status: 0 on success, 2 on bad input (one line on stderr naming the field and the problem), 3 when the
-result is incomplete (``dgp``: some subproblem has failed paths, so equilibria may be missing there; the
-subproblems are named on stderr).
+result is incomplete (``dgp``: some subproblem has failed paths or regular endpoints without a Krawczyk
+certificate, so equilibria may be missing there; the subproblems and why are named on stderr).
 """
 
 from __future__ import annotations
@@ -24,7 +24,7 @@ import numpy as np
 
 from .errors import CdprInputError
 
-INCOMPLETE = 3  # exit status: a result that could not be completed (failed paths), said on stderr
+INCOMPLETE = 3  # exit status: a result not proven complete (failed paths, uncertified endpoints), said on stderr
 
 
 class _Parser(argparse.ArgumentParser):
@@ -143,7 +143,7 @@ def _dgp_lengths(args, robot) -> np.ndarray:
 
 
 def _run_dgp(args) -> int:
-    from .dgp import dgp, dgp_table
+    from .dgp import dgp, dgp_table, incompleteness
     from .robot import load_robot
 
     robot = load_robot(args.robot)
@@ -172,10 +172,12 @@ def _run_dgp(args) -> int:
         print(f"{robot.name}: DGP, lengths {', '.join(f'{v:g}' for v in lengths)}")
         print(dgp_table(result, robot.n))
     if not result.complete:
-        print(f"cdpr: incomplete: {len(result.incomplete)} subproblem(s) have failed paths, so equilibria may be "
-              f"missing there: " + " ".join(str(list(s.taut)) for s in result.incomplete)
-              + " (exit status 3; --mpmath-retry tracks up to 4 failed paths per subproblem in arbitrary precision)",
-              file=sys.stderr)
+        print(f"cdpr: incomplete: {len(result.incomplete)} subproblem(s) not proven complete, so equilibria may be "
+              f"missing there (exit status 3):", file=sys.stderr)
+        for s in result.incomplete:
+            print(f"  {list(s.taut)}: {incompleteness(s)}", file=sys.stderr)
+        if any(s.failed_paths for s in result.incomplete):
+            print("  (--mpmath-retry tracks up to 4 failed paths per subproblem in arbitrary precision)", file=sys.stderr)
         return INCOMPLETE
     return 0
 

@@ -191,9 +191,15 @@ def _homotopy(robot, rho, cables, seed):
     return solve_taut_set(robot, rho, cables, **kwargs)
 
 
-def _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only):
+def _incompleteness(hsub):
+    from .dgp import incompleteness
+
+    return incompleteness(hsub)
+
+
+def _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only, hwhy=None):
     """(agree, compared) of one subproblem (see the module docstring); ``hflag``: the homotopy subproblem's own
-    ``complete`` flag when it has one (None otherwise)."""
+    ``complete`` flag when it has one (None otherwise), ``hwhy``: why it is not complete."""
     h_complete = hcount is not None and ((hskip is None and hfailed == 0 and hflag is not False) or pruned is not None)
     i_complete = isub.skipped is None and not isub.undecided
     if i_complete and h_only:
@@ -213,7 +219,7 @@ def _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only):
     elif hfailed:
         why.append(f"homotopy incomplete: {hfailed} failed path(s)")
     elif hflag is False:
-        why.append("homotopy incomplete: its path outcomes do not account for the generic solution count")
+        why.append(f"homotopy incomplete: {hwhy or 'its path outcomes do not account for the generic solution count'}")
     if isub.skipped is not None:
         why.append(f"interval search skipped ({isub.skipped})")
     elif isub.undecided:
@@ -242,7 +248,8 @@ def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed:
         pruned = pruning_proof(robot, rho, cables)
     isub = interval_result if interval_result is not None else solve_taut_set_interval(robot, rho, cables, options)
     h_only, i_only = _match(robot, taut1, list(hsols), list(isub.solutions))
-    agree, compared = _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only)
+    hwhy = _incompleteness(hsub) if hflag is False else None
+    agree, compared = _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only, hwhy)
     return SubproblemComparison(taut1, hcount, isub.admissible, len(isub.undecided), agree, h_only, i_only,
                                 tuple(isub.undecided), th, isub.seconds, isub.boxes, hskip, isub.skipped, compared,
                                 hfailed)

@@ -139,8 +139,11 @@ class DGPSolution:
 @dataclass(frozen=True)
 class DGPSubproblem:
     """One taut set.  ``outcomes``: paths per outcome (regular, singular, at_infinity, failed; they add up to
-    ``paths``); ``failures``: failed paths per reason; ``complete``: every path has an outcome other than failed
-    and they account for the generic count (or the set is proven empty by pruning, or solved analytically)."""
+    ``paths``); ``failures``: failed paths per reason; ``certified`` (``certified_real``): regular endpoints proven
+    to be distinct roots (real roots) by Krawczyk boxes that are pairwise disjoint (:func:`.certify.certify_endpoints`;
+    None where no path was tracked), ``uncertified``: the others per reason; ``complete``: no path failed, the
+    outcomes account for the generic count, and every regular endpoint is certified (or the set is proven empty by
+    pruning, or solved analytically)."""
 
     taut: tuple  # 1-based
     paths: int
@@ -153,6 +156,14 @@ class DGPSubproblem:
     failures: dict = field(default_factory=dict)
     complete: bool = True
     generic_count: int | None = None
+    certified: int | None = None  # regular endpoints proven unique in pairwise disjoint Krawczyk boxes
+    certified_real: int | None = None  # of those, proven real
+    uncertified: dict = field(default_factory=dict)  # regular endpoints not certified, per reason
+
+    @property
+    def accounted(self) -> bool:
+        """No failed path, and the outcomes add up to the generic count (a count of paths, no proof)."""
+        return self.outcomes["failed"] == 0 and sum(self.outcomes.values()) == self.generic_count
 
     @property
     def failed_paths(self) -> int:
@@ -165,6 +176,8 @@ class DGPSubproblem:
     def to_dict(self) -> dict:
         return {"taut": list(self.taut), "paths": self.paths, "outcomes": dict(self.outcomes),
                 "failures": dict(self.failures), "complete": self.complete, "generic_count": self.generic_count,
+                "certified": self.certified, "certified_real": self.certified_real,
+                "uncertified": dict(self.uncertified),
                 "finite": self.finite, "real": self.real, "admissible": self.admissible,
                 "failed_paths": self.failed_paths, "seconds": self.seconds, "skipped": self.skipped}
 
@@ -462,13 +475,25 @@ def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, opti
     """(DGPSubproblem, [DGPSolution]) for the 0-based taut set ``cables`` (pruning, tracking, filtering, and
     with ``certify`` an interval certificate for every admissible solution, :mod:`.certify`); ``options``: the
     homotopy's :class:`.homotopy.endgame.SolveOptions` (default: those of the module doc)."""
-    sub, sols = _solve_taut_set(robot, rho, cables, seed, options)
-    if certify and sols:
-        from .certify import certify_taut_root
+    sub, sols, Z = _solve_taut_set(robot, rho, cables, seed, options)
+    (sub,) = _with_endpoint_certificates(robot, rho, [(cables, sub, Z)])
+    return sub, _certify_solutions(robot, rho, sols) if certify else sols
 
-        sols = [s.with_certificate(certify_taut_root(robot, rho, [t - 1 for t in s.taut], s.position, s.rotation,
-                                                     s.tensions[[t - 1 for t in s.taut]])) for s in sols]
-    return sub, sols
+
+def _certify_solutions(robot, rho, sols):
+    """The admissible solutions with their interval certificates (:func:`.certify.certify_taut_root`)."""
+    if not sols:
+        return sols
+    from .certify import certify_taut_root
+
+    return [s.with_certificate(certify_taut_root(robot, rho, [t - 1 for t in s.taut], s.position, s.rotation,
+                                                 s.tensions[[t - 1 for t in s.taut]])) for s in sols]
+
+
+def _solve_and_certify_solutions(robot, rho, cables, seed, certify, options):
+    """:func:`_solve_taut_set` plus the certificates of its admissible solutions (endpoint certificates to come)."""
+    sub, sols, Z = _solve_taut_set(robot, rho, cables, seed, options)
+    return sub, _certify_solutions(robot, rho, sols) if certify else sols, Z
 
 
 def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None):
@@ -478,13 +503,13 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None):
     m = len(cables)
     reason = prune(robot, rho, cables)
     if reason is not None:  # a proof that the set holds no equilibrium: complete
-        return DGPSubproblem(taut1, 0, 0, 0, 0, time.perf_counter() - t0, reason, generic_count=0), []
+        return DGPSubproblem(taut1, 0, 0, 0, 0, time.perf_counter() - t0, reason, generic_count=0), [], None
     if m == 1:
-        return _solve_one_cable(robot, rho, cables[0])
+        return (*_solve_one_cable(robot, rho, cables[0]), None)
     if not generic_path(m).exists():
         return DGPSubproblem(taut1, 0, 0, 0, 0, time.perf_counter() - t0,
                              f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})",
-                             complete=False), []
+                             complete=False), [], None
     fam = fast_family(m)
     target, c, L, Rw = _normalized(robot, rho, cables)
     res, failed = _track(m, target, seed, gamma=False, options=options)
@@ -532,10 +557,46 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None):
         if p.status in FAILURES:
             failures[p.status] = failures.get(p.status, 0) + 1
     generic = len(_generic(m)[1])
-    complete = outcomes["failed"] == 0 and sum(outcomes.values()) == generic
+    # complete only once the regular endpoints are certified (_with_endpoint_certificates)
     sub = DGPSubproblem(taut1, len(paths), finite, int(np.sum(real)), len(sols), time.perf_counter() - t0,
-                        outcomes=outcomes, failures=failures, complete=complete, generic_count=generic)
-    return sub, sols
+                        outcomes=outcomes, failures=failures, complete=False, generic_count=generic)
+    regular = np.array([s.x for s in res.solutions if not s.singular]).reshape(-1, fam.n)
+    return sub, sols, _world_coordinates(regular, m, c, L, Rw, robot.load)
+
+
+def _world_coordinates(X, m, c, L, Rw, Q):
+    """Roots (p^, u^, v^, w^, lam^) of the normalized problem (complex rows) -> (p, u, v, w, lam) of the robot:
+    p = c + L Rw^T p^, columns of R = Rw^T R^, lam = Q lam^ / L (see :func:`_normalized`)."""
+    return np.hstack([c + L * (X[:, 0:3] @ Rw), X[:, 3:6] @ Rw, X[:, 6:9] @ Rw, X[:, 9:12] @ Rw,
+                      Q * X[:, 12:12 + m] / L])
+
+
+def _with_endpoint_certificates(robot, rho, items) -> list:
+    """The subproblems of ``items`` = [(0-based cables, DGPSubproblem, regular endpoints in world coordinates or
+    None)] with their endpoint certificates (one vectorized Krawczyk run per m, :func:`.certify.certify_endpoints`)
+    and ``complete`` decided: no failed path, outcomes adding up to the generic count, and every regular endpoint
+    proven a distinct root (its box unique-root, disjoint from the others)."""
+    from .certify import certify_endpoints
+
+    out = [sub for _, sub, _ in items]
+    by_m = {}
+    for k, (cables, _, Z) in enumerate(items):
+        if Z is not None:
+            by_m.setdefault(len(cables), []).append(k)
+    for ks in by_m.values():
+        for k, (boxes, over) in zip(ks, certify_endpoints(robot, rho, [(items[k][0], items[k][2]) for k in ks])):
+            sub = items[k][1]
+            ok = boxes.proven & ~over
+            why = {}
+            for reason, good, o in zip(boxes.reason, ok, over):
+                if not good:
+                    r = "its box meets another root's box (not proven distinct)" if o else reason
+                    why[r] = why.get(r, 0) + 1
+            certified = int(ok.sum())
+            complete = sub.accounted and certified == len(ok) == sub.outcomes["regular"]
+            out[k] = replace(sub, certified=certified, certified_real=int(np.sum(ok & boxes.real)), uncertified=why,
+                             complete=complete)
+    return out
 
 
 def _merge(solutions, L):
@@ -604,10 +665,10 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
         # threads: the compiled tracker releases the GIL, so subproblems track in parallel without the cost of
         # worker processes (start-up, pickling); the Python parts (endgame, filtering, certificates) interleave
         with ThreadPoolExecutor(max_workers=min(jobs, len(heavy))) as ex:
-            futs = {ex.submit(solve_taut_set, robot, rho, c, seed, certify, options): c
+            futs = {ex.submit(_solve_and_certify_solutions, robot, rho, c, seed, certify, options): c
                     for c in sorted(heavy, key=lambda c: -len(c))}
             for c in light:
-                results[c] = solve_taut_set(robot, rho, c, seed, certify, options)
+                results[c] = _solve_and_certify_solutions(robot, rho, c, seed, certify, options)
                 done += 1
                 if progress:
                     progress(results[c][0], done, len(sets))
@@ -618,11 +679,12 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
                     progress(results[futs[f]][0], done, len(sets))
     else:
         for c in sets:
-            results[c] = solve_taut_set(robot, rho, c, seed, certify, options)
+            results[c] = _solve_and_certify_solutions(robot, rho, c, seed, certify, options)
             done += 1
             if progress:
                 progress(results[c][0], done, len(sets))
-    subs = tuple(results[c][0] for c in sets)
+    # the regular endpoints of every subproblem certified at once, one vectorized run per m
+    subs = tuple(_with_endpoint_certificates(robot, rho, [(c, *results[c][::2]) for c in sets]))
     sols = _merge([s for c in sets for s in results[c][1]], robot.size)
     sols.sort(key=lambda s: (-len(s.taut), s.taut, tuple(np.round(s.position, 9))))
     return DGPResult(tuple(sols), subs, time.perf_counter() - t0)
@@ -662,9 +724,8 @@ def dgp_table(result: DGPResult, n: int) -> str:
     for s in result.subproblems:
         if s.skipped:
             lines.append(f"  skipped {list(s.taut)}: {s.skipped}")
-        elif s.failed_paths:
-            why = ", ".join(f"{v} {k.replace('_', ' ')}" for k, v in sorted(s.failures.items()))
-            lines.append(f"  incomplete {list(s.taut)}: {s.failed_paths} of {s.paths} paths failed ({why})")
+        elif not s.complete:
+            lines.append(f"  incomplete {list(s.taut)}: {incompleteness(s)}")
     lines.append(summary_line(result))
     return "\n".join(lines)
 
@@ -674,7 +735,28 @@ def summary_line(result: DGPResult) -> str:
     o = result.outcomes()
     subs = result.subproblems
     paths = sum(s.paths for s in subs)
-    verdict = "complete" if result.complete else f"INCOMPLETE: {len(result.incomplete)} subproblem(s) with failed paths"
+    verdict = "complete" if result.complete else f"INCOMPLETE: {len(result.incomplete)} subproblem(s)"
+    cert = sum(s.certified or 0 for s in subs)
+    cert_real = sum(s.certified_real or 0 for s in subs)
     return (f"paths {paths}: {o['regular']} regular, {o['singular']} singular, {o['at_infinity']} at infinity, "
-            f"{o['failed']} failed; {sum(s.finite for s in subs)} finite, {sum(s.real for s in subs)} real, "
+            f"{o['failed']} failed; {sum(s.finite for s in subs)} finite ({cert} certified distinct roots, "
+            f"{cert_real} of them proven real), {sum(s.real for s in subs)} real, "
             f"{sum(s.admissible for s in subs)} admissible; {verdict}")
+
+
+def incompleteness(sub: DGPSubproblem) -> str:
+    """Why a subproblem is not complete, in words (failed paths per reason, uncertified endpoints, counts)."""
+    if sub.skipped:
+        return sub.skipped
+    parts = []
+    if sub.failed_paths:
+        why = ", ".join(f"{v} {k.replace('_', ' ')}" for k, v in sorted(sub.failures.items()))
+        parts.append(f"{sub.failed_paths} of {sub.paths} paths failed ({why})")
+    if sub.uncertified:
+        why = "; ".join(f"{v}: {k}" for k, v in sorted(sub.uncertified.items()))
+        parts.append(f"{sum(sub.uncertified.values())} regular endpoint(s) not certified ({why})")
+    if sub.certified is None and sub.paths:
+        parts.append("endpoints not certified")
+    if sub.generic_count is not None and sum(sub.outcomes.values()) != sub.generic_count:
+        parts.append(f"outcomes add up to {sum(sub.outcomes.values())}, not the generic count {sub.generic_count}")
+    return "; ".join(parts) or "not complete"

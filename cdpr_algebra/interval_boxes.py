@@ -105,6 +105,13 @@ def enclose_fraction(fr) -> tuple[float, float]:
     return float(np.nextafter(f, -_INF)), f
 
 
+def _foreign(o) -> bool:
+    """o is a number type of another module that opted out of numpy's ufuncs (``__array_ufunc__ = None``, e.g.
+    :class:`.complex_krawczyk.ComplexPair`): Interval and Dual operators defer to its reflected operators."""
+    t = type(o)
+    return t is not Interval and t is not Dual and getattr(t, "__array_ufunc__", 0) is None
+
+
 class Interval:
     """A batch of closed intervals [lo, hi] (numpy arrays or scalars); rigorous outward-rounded operations."""
 
@@ -187,7 +194,7 @@ class Interval:
         return self
 
     def __add__(self, o) -> "Interval":
-        if isinstance(o, Dual):
+        if isinstance(o, Dual) or _foreign(o):
             return NotImplemented
         if isinstance(o, Interval):
             return Interval(down(self.lo + o.lo), up(self.hi + o.hi))
@@ -196,7 +203,7 @@ class Interval:
     __radd__ = __add__
 
     def __sub__(self, o) -> "Interval":
-        if isinstance(o, Dual):
+        if isinstance(o, Dual) or _foreign(o):
             return NotImplemented
         if isinstance(o, Interval):
             return Interval(down(self.lo - o.hi), up(self.hi - o.lo))
@@ -206,7 +213,7 @@ class Interval:
         return Interval(down(o - self.hi), up(o - self.lo))
 
     def __mul__(self, o) -> "Interval":
-        if isinstance(o, Dual):
+        if isinstance(o, Dual) or _foreign(o):
             return NotImplemented
         if isinstance(o, Interval):
             p1 = self.lo * o.lo
@@ -224,7 +231,7 @@ class Interval:
 
     def __truediv__(self, o) -> "Interval":
         """Division; where the divisor contains 0 the result is (-inf, inf)."""
-        if isinstance(o, Dual):
+        if isinstance(o, Dual) or _foreign(o):
             return NotImplemented
         if not isinstance(o, Interval):
             o = Interval(o, o)
@@ -314,6 +321,8 @@ class Dual:
         self.g = g
 
     def __add__(self, o):
+        if _foreign(o):
+            return NotImplemented
         if isinstance(o, Dual):
             g = dict(self.g)
             for k, x in o.g.items():
@@ -324,6 +333,8 @@ class Dual:
     __radd__ = __add__
 
     def __sub__(self, o):
+        if _foreign(o):
+            return NotImplemented
         if isinstance(o, Dual):
             g = dict(self.g)
             for k, x in o.g.items():
@@ -338,6 +349,8 @@ class Dual:
         return Dual(-self.v, {k: -x for k, x in self.g.items()})
 
     def __mul__(self, o):
+        if _foreign(o):
+            return NotImplemented
         if isinstance(o, Dual):
             g = {k: x * o.v for k, x in self.g.items()}
             for k, x in o.g.items():

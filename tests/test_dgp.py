@@ -10,6 +10,7 @@ import pytest
 from cdpr_algebra.dgp import available_m, dgp, prune
 from cdpr_algebra.robot import Robot, load_robot
 from equilibria import hang_platform
+from accounting import expected_complete
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLES = json.loads((ROOT / "tests" / "data" / "seed000_tables.json").read_text())["tables"]
@@ -181,7 +182,7 @@ def test_round_trip_known_equilibrium(m, seed):
     assert [s.taut for s in res.subproblems] == [(1,), (2,), (3,), (1, 2), (1, 3), (2, 3), (1, 2, 3)]
     # every path has one outcome (a path near a huge complex rotation may fail: it is counted, not hidden)
     assert all(sum(s.outcomes.values()) == s.paths == s.generic_count for s in res.subproblems)
-    assert all(s.complete == (s.failed_paths == 0) for s in res.subproblems)
+    assert all(s.complete == expected_complete(s) for s in res.subproblems)
     L = robot.size
     hits = [s for s in res.solutions if np.max(np.abs(s.position - p)) <= 1e-7 * L and np.max(np.abs(s.rotation - R)) <= 1e-7]
     assert len(hits) == 1, [(s.taut, s.position) for s in res.solutions]
@@ -217,8 +218,10 @@ def test_cli_json_contract(tmp_path, capsys):
     assert len(out["subproblems"]) == 3 and "[3/3]" in cap.err
     for sub in out["subproblems"]:
         assert set(sub) == {"taut", "paths", "outcomes", "failures", "complete", "generic_count", "finite", "real",
-                            "admissible", "failed_paths", "seconds", "skipped"}
+                            "admissible", "failed_paths", "seconds", "skipped", "certified", "certified_real",
+                            "uncertified"}
         assert sum(sub["outcomes"].values()) == sub["paths"] == sub["generic_count"] and sub["complete"]
+        assert sub["certified"] in (None, sub["outcomes"]["regular"]) and sub["uncertified"] == {}
     assert out["outcomes"] == {k: sum(s["outcomes"][k] for s in out["subproblems"]) for k in out["outcomes"]}
     keys = {"taut", "position", "angles", "rotation", "tensions", "hessian", "stable", "certified", "certificate",
             "alternatives"}

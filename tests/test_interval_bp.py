@@ -373,7 +373,7 @@ def test_seed000_test2_printed_rows_with_six_and_five_taut_cables():
 def _crosscheck_all_agree(name):
     """Both DGP solvers on all 63 subproblems of a seed 000 test: every count equal, every solution matched one to
     one, no undecided box; nothing disagrees, and a subproblem is only left 'not compared' because the homotopy
-    has failed paths there (issue 15: counted, not hidden); returns (robot, interval subproblems, interval
+    is incomplete there (failed paths or uncertified endpoints; issue 15: counted, not hidden); returns (robot, interval subproblems, interval
     admissible count by m)."""
     from cdpr_algebra.crosscheck import CrosscheckResult, compare_taut_set, crosscheck_table
     from cdpr_algebra.dgp import lengths_and_taut_sets
@@ -386,7 +386,7 @@ def _crosscheck_all_agree(name):
     assert len(comps) == 63
     assert not res.disagreements, crosscheck_table(res)
     for c in comps:
-        assert c.agree is True or (c.agree is None and c.homotopy_failed_paths > 0), crosscheck_table(res)
+        assert c.agree is True or c.compared.startswith("not compared: homotopy incomplete"), crosscheck_table(res)
         assert c.homotopy == c.interval and c.undecided == 0 and not c.homotopy_only and not c.interval_only
     by_m = {m: sum(s.admissible for s in subs if len(s.taut) == m) for m in range(1, 7)}
     return robot, subs, by_m

@@ -1,0 +1,106 @@
+"""Krawczyk certificates of complex roots (issue 15, item 4): systems with exactly known roots, negative controls
+(a double root, a non-root, two approximations of one root), and the DGP's endpoint accounting on seed 000 Test 1."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from cdpr_algebra.complex_krawczyk import certify_complex_roots, overlapping
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _system(z, rows=None, jac=True):
+    """(z0 - 1)(z0 - 2) = 0, z1^2 + z0 = 0, z2 - z0 z1 = 0: roots (1, +-i, +-i), (2, +-i sqrt 2, +-2i sqrt 2)."""
+    F = [z[0] * z[0] - 3 * z[0] + 2, z[1] * z[1] + z[0], z[2] - z[0] * z[1]]
+    return F, [[2 * z[0] - 3, 0, 0], [1, 2 * z[1], 0], [-z[1], -z[0], 1]] if jac else None
+
+
+EXACT = np.array([[1, s * 1j, s * 1j] for s in (1, -1)] + [[2, s * 1j * np.sqrt(2), s * 2j * np.sqrt(2)] for s in (1, -1)])
+
+
+def _inside(boxes, Z):
+    Y = np.hstack([Z.real, Z.imag])
+    return np.all((boxes.lo <= Y) & (Y <= boxes.hi), axis=1)
+
+
+def test_known_complex_roots_proven_nonreal_and_enclosed():
+    rng = np.random.default_rng(1)
+    Z = EXACT + 1e-9 * (rng.standard_normal(EXACT.shape) + 1j * rng.standard_normal(EXACT.shape))
+    b = certify_complex_roots(_system, _system, Z, np.ones(3))
+    assert b.proven.all() and b.nonreal.all() and not b.real.any()
+    assert _inside(b, EXACT).all()  # the exact roots lie in their enclosures
+    assert not overlapping(b.lo, b.hi).any()
+    assert np.max(b.hi - b.lo) <= 1e-6 * 3  # tight boxes (relative width limit, |z| <= 2 sqrt 2)
+
+
+def test_real_roots_proven_real():
+    def f(z, rows=None, jac=True):  # eight real roots: z0 in {+-sqrt 2, +-sqrt 3}, z1 in {0, 1}
+        F = [(z[0] * z[0] - 2) * (z[0] * z[0] - 3), z[1] * z[1] - z[1]]
+        return F, [[4 * z[0] * z[0] * z[0] - 10 * z[0], 0], [0, 2 * z[1] - 1]] if jac else None
+
+    exact = np.array([[s * np.sqrt(q), t] for s in (1, -1) for q in (2, 3) for t in (0, 1)], dtype=complex)
+    b = certify_complex_roots(f, f, exact + 1e-12j, np.ones(2))  # tiny imaginary noise: taken as real
+    assert b.proven.all() and b.real.all() and not b.nonreal.any()
+    assert _inside(b, exact).all()
+    assert np.all(b.lo[:, 2:] == -b.hi[:, 2:])  # conjugation-invariant boxes: the proof of realness
+
+
+def test_negative_controls():
+    def f(z, rows=None, jac=True):
+        return [z[0] * z[0], z[1] - 1], [[2 * z[0], 0], [0, 1]] if jac else None  # double root z0 = 0
+
+    b = certify_complex_roots(f, f, np.array([[1e-10, 1.0]]), np.ones(2))
+    assert not b.proven[0] and "not proven" in b.reason[0]
+    # a point that is no root (1e-3 away from (1, i, i)) and two approximations of one root
+    Z = np.array([EXACT[0] + 1e-3, EXACT[2], EXACT[2] * (1 + 1e-13)])
+    b = certify_complex_roots(_system, _system, Z, np.ones(3))
+    assert not b.proven[0] and b.proven[1] and b.proven[2]
+    over = overlapping(b.lo[1:], b.hi[1:])
+    assert over.all()  # the same root twice: the boxes meet, the roots are not proven distinct
+
+
+@pytest.fixture(scope="module")
+def test1():
+    from cdpr_algebra.robot import load_robot
+
+    return load_robot(ROOT / "examples" / "seed000_test1.toml")
+
+
+def test_dgp_endpoints_certified_and_accounted(test1):
+    """Seed 000 Test 1, taut sets {1,2} and {1,2,3}: every regular endpoint is a certified distinct root, the
+    certified real ones are the float count of real ones, and the subproblem is complete; JSON carries it."""
+    from cdpr_algebra.dgp import solve_taut_set
+
+    for cables in [(0, 1), (0, 1, 2)]:
+        sub, _ = solve_taut_set(test1, test1.lengths, cables, certify=False)
+        assert sub.outcomes["failed"] == 0
+        assert sub.certified == sub.outcomes["regular"] == sub.finite - sub.outcomes["singular"] > 0
+        assert sub.certified_real == sub.real and sub.uncertified == {}
+        assert sub.complete and sub.accounted
+        d = sub.to_dict()
+        assert d["certified"] == sub.certified and d["certified_real"] == sub.real and d["uncertified"] == {}
+
+
+def test_dgp_duplicate_endpoint_is_not_complete(test1):
+    """An endpoint reported twice (as a merge would) makes the boxes meet: not certified, not complete."""
+    from cdpr_algebra import dgp as D
+
+    sub, sols, Z = D._solve_taut_set(test1, test1.lengths, (0, 1, 2))
+    Zdup = np.vstack([Z, Z[:1] * (1 + 1e-14)])
+    sub_dup = replace(sub, outcomes={**sub.outcomes, "regular": sub.outcomes["regular"] + 1})
+    (ok,) = D._with_endpoint_certificates(test1, test1.lengths, [((0, 1, 2), sub, Z)])
+    (bad,) = D._with_endpoint_certificates(test1, test1.lengths, [((0, 1, 2), sub_dup, Zdup)])
+    assert ok.complete and ok.certified == len(Z)
+    assert not bad.complete and bad.certified == len(Z) - 1
+    assert sum(bad.uncertified.values()) == 2 and "not proven distinct" in next(iter(bad.uncertified))
+    # a root moved off the solution set: not certified
+    Zoff = Z.copy()
+    Zoff[3, 0] += 1e-3 * test1.size
+    (off,) = D._with_endpoint_certificates(test1, test1.lengths, [((0, 1, 2), sub, Zoff)])
+    assert not off.complete and off.certified == len(Z) - 1
+    assert "incomplete" not in D.incompleteness(off) and "not certified" in D.incompleteness(off)
