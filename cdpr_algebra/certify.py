@@ -473,7 +473,9 @@ def certify_endpoints(robot, lengths, groups) -> list:
         rho2 = [rho[cab[:, i]] ** 2 for i in range(m)]
         return taut_system(x, A, b, g, f_float, rho2, jacobian=jac)
 
-    boxes = certify_complex_roots(rigorous, approximate, Z, _scales(robot, m, range(12 + m), robot.size))
+    scale = _scales(robot, m, range(12 + m), robot.size)
+    boxes = certify_complex_roots(rigorous, approximate, Z, scale)
+    boxes = _retry_in_balls(robot, rho, rows, Z, scale, boxes)
     out, k0 = [], 0
     for _, Zg in groups:
         sl = slice(k0, k0 + len(Zg))
@@ -484,6 +486,44 @@ def certify_endpoints(robot, lengths, groups) -> list:
         over[bg.proven] = overlapping(bg.lo[bg.proven], bg.hi[bg.proven])
         out.append((bg, over))
     return out
+
+
+BALL_RETRY_MAX = 400  # roots per call retried in ball arithmetic (tens of milliseconds each)
+BALL_PREC = 256  # bits
+
+
+def _retry_in_balls(robot, rho, rows, Z, scale, boxes):
+    """The roots that double-precision interval arithmetic could not certify, tested again in complex ball
+    arithmetic at ``BALL_PREC`` bits (:func:`.complex_krawczyk.certify_complex_root_balls`; at most
+    ``BALL_RETRY_MAX`` of them, the others keep their reason)."""
+    from flint import acb, arb, ctx
+
+    from .complex_krawczyk import ComplexRootBoxes, certify_complex_root_balls
+
+    todo = [k for k in np.flatnonzero(~boxes.proven) if np.all(np.isfinite(Z[k]))]
+    if not todo:
+        return boxes
+    proven, lo, hi = boxes.proven.copy(), boxes.lo.copy(), boxes.hi.copy()
+    real, nonreal, reason = boxes.real.copy(), boxes.nonreal.copy(), list(boxes.reason)
+    m = rows.shape[1]
+    with ctx.workprec(BALL_PREC):
+        f = [arb(robot.load) * arb(float(c)) for c in robot.load_direction]
+    for k in todo[:BALL_RETRY_MAX]:
+        taut = [int(c) for c in rows[k]]
+        A, b, g, _ = _robot_data(robot, taut, float)
+        rho2 = [arb(float(rho[i])) * arb(float(rho[i])) for i in taut]  # exact at BALL_PREC bits
+
+        def system(x, jac, A=A, b=b, rho2=rho2):
+            return taut_system(x, A, b, g, f, rho2, jacobian=jac)
+
+        ok, lk, hk, rk, nk, why = certify_complex_root_balls(system, Z[k], scale, prec=BALL_PREC)
+        if ok:
+            proven[k], lo[k], hi[k], real[k], nonreal[k], reason[k] = True, lk, hk, rk, nk, ""
+        else:
+            reason[k] = why
+    for k in todo[BALL_RETRY_MAX:]:
+        reason[k] += f" (not retried in ball arithmetic: more than {BALL_RETRY_MAX} such roots)"
+    return ComplexRootBoxes(proven, lo, hi, real, nonreal, boxes.center, tuple(reason))
 
 
 # --------------------------------------------------------------------------------------------- IGP

@@ -104,3 +104,32 @@ def test_dgp_duplicate_endpoint_is_not_complete(test1):
     (off,) = D._with_endpoint_certificates(test1, test1.lengths, [((0, 1, 2), sub, Zoff)])
     assert not off.complete and off.certified == len(Z) - 1
     assert "incomplete" not in D.incompleteness(off) and "not certified" in D.incompleteness(off)
+
+
+def test_ill_conditioned_roots_need_balls():
+    """z^2 - 2 z + 1 - 2^-60 = 0 (evaluated as written): roots 1 +- 2^-30, condition ~1e9.  In double precision the
+    rounding of z^2 alone (1e-16) exceeds F's values near the roots (not proven); in 256-bit ball arithmetic both
+    are proven, real, in disjoint boxes that hold the exact roots."""
+    from flint import arb
+
+    from cdpr_algebra.complex_krawczyk import certify_complex_root_balls
+
+    c = 2.0 ** -60
+
+    def f(z, rows=None, jac=True):
+        return [z[0] * z[0] - 2 * z[0] + 1 - c], [[2 * z[0] - 2]] if jac else None
+
+    exact = np.array([[1 + 2.0 ** -30], [1 - 2.0 ** -30]], dtype=complex)
+    approx = exact * (1 + 1e-12)
+    b = certify_complex_roots(f, f, approx, np.ones(1))
+    assert not b.proven.any()
+    got = [certify_complex_root_balls(lambda z, jac: f(z, None, jac), z, np.ones(1)) for z in approx]
+    assert all(g[0] and g[3] and not g[4] for g in got), [g[5] for g in got]
+    lo = np.array([g[1] for g in got])
+    hi = np.array([g[2] for g in got])
+    for k in range(2):  # the exact roots (floats: 1 +- 2^-30 is exact) lie in their enclosures
+        assert arb(lo[k, 0]) <= arb(exact[k, 0].real) <= arb(hi[k, 0])
+    assert not overlapping(lo, hi).any()
+    # a point that is no root within the width limit is refused in balls too
+    bad = certify_complex_root_balls(lambda z, jac: f(z, None, jac), np.array([1 + 1e-3]), np.ones(1))
+    assert not bad[0] and "moves the root" in bad[5]
