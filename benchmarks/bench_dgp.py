@@ -50,7 +50,9 @@ def bench(path, repeat, jobs):
           f"(jobs={jobs}); {len(res.solutions)} admissible ({', '.join(f'm={m}: {c}' for m, c in counts.items() if c)}), "
           f"{len(res.stable)} stable; {len(res.subproblems)} subproblems ({skipped} skipped, "
           f"{len(res.incomplete)} incomplete), {paths} paths: {o['regular']} regular, {o['singular']} singular, "
-          f"{o['at_infinity']} at infinity, {o['failed']} failed", flush=True)
+          f"{o['at_infinity']} at infinity, {o['failed']} failed; "
+          f"{sum(s.certified or 0 for s in res.subproblems)} endpoints certified, "
+          f"{sum(sum(s.uncertified.values()) for s in res.subproblems)} not", flush=True)
 
 
 def phc_compare(path, cable_sets, repeat, timeout):
