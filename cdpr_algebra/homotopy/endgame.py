@@ -466,6 +466,26 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
         inf, _, _ = decide_in_chart(out_x[gi], acc[gi], o=eo)
         status[gi[inf]] = AT_INFINITY
     rest = np.flatnonzero(status == "")
+    if rest.size and proj is not None:
+        # first the plain track to t = 0 in the chart: a regular point there with y0 nonzero beyond its accuracy
+        # is a regular finite solution, however large (no Cauchy loops); the others go to the endgame below
+        from .projective import to_chart
+
+        Yc = to_chart(x_te[rest], proj.chart)
+        seg_c = track_segment(proj, Yc, te, 0.0, tr)
+        steps[rest] += seg_c.steps
+        ok_c = np.flatnonzero(seg_c.status == SUCCESS)
+        if ok_c.size:
+            Yr, upd, _, cond_c, quad_c = refine(proj, seg_c.x[ok_c], 0.0, tol=eo.refine_tol)
+            reg = quad_c & (cond_c <= eo.singular_condition)
+            inf_c, _, _ = decide_in_chart(Yr, upd, o=eo)
+            fin_c = reg & ~inf_c
+            gi = rest[ok_c[fin_c]]
+            with np.errstate(all="ignore"):
+                out_x[gi] = Yr[fin_c][:, 1:] / Yr[fin_c][:, :1]
+            status[gi] = SUCCESS
+            acc[gi] = upd[fin_c]
+        rest = np.flatnonzero(status == "")
     if rest.size:
         in_chart = chart is not None or proj is not None
         hend = proj if proj is not None else homotopy
