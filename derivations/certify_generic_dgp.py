@@ -124,16 +124,22 @@ def trace_options():
                             witness_loops_no_progress=5, confirm_loops_no_progress=3, confirmations=2)
 
 
-def run_trace_test(m, p, X, seed, coordinates, verbose=True):
+def run_trace_test(m, p, X, seed, coordinates, verbose=True, start=None):
+    """The trace test of the stored set; ``start``: None, or a dict {"W10": known points of W10 from an earlier
+    run with the same seed (same q0 and l), "note": where they come from} (recorded as ``start_witnesses``)."""
     fam = fast_family(m)
     o = trace_options()
     t0 = time.perf_counter()
-    res = verify_solution_completeness(fam, p, X, seed=seed, options=o, verbose=verbose, coordinates=coordinates)
+    res = verify_solution_completeness(fam, p, X, seed=seed, options=o, verbose=verbose, coordinates=coordinates,
+                                       start=None if start is None else start["W10"])
     tr = res.trace
     out = {"status": tr.status, "count": int(len(X)), "seed": seed, "q0": _c(res.q0), "l": _c(res.l),
            "coordinates": [int(c) for c in res.coordinates],
            "W10_count": int(len(res.W10)), "W10": _c(res.W10), "witnesses": res.witnesses, "trace": tr.to_dict(),
            "options": o.to_dict(), "seconds": time.perf_counter() - t0}
+    if start is not None:
+        out["start_witnesses"] = {"count": int(len(start["W10"])), "note": start["note"],
+                                  "earlier_seconds": start.get("seconds")}
     if verbose:
         print(f"m = {m}: trace test {tr.status}: |W01| = {len(X)}, |W10| = {len(res.W10)}, relative trace "
               f"{tr.relative:.2e} (tol {tr.tol:.0e}; one point missing would give >= {tr.detection:.1e}), "
@@ -263,7 +269,16 @@ def main(argv=None) -> int:
     ap.add_argument("--coordinates", choices=["pose", "all"], default="pose",
                     help="unknowns the trace test works in: the 12 pose unknowns (default; they separate the "
                          "solutions, checked) or all")
+    ap.add_argument("--start-witnesses", type=Path, default=None,
+                    help="trace test: start the W10 monodromy from the points of this .npz (arrays W10, note, "
+                         "seconds), saved from an earlier run with the same --seed and --coordinates (one --m)")
     args = ap.parse_args(argv)
+    start = None
+    if args.start_witnesses is not None:
+        if len(args.m) != 1:
+            ap.error("--start-witnesses needs exactly one --m")
+        z = np.load(args.start_witnesses)
+        start = {"W10": z["W10"], "note": str(z["note"]), "seconds": float(z["seconds"]) if "seconds" in z else None}
     sections = set(args.only or ["trace", "monodromy"] + (["phc"] if args.phc else []))
     status = 0
     for m in args.m:
@@ -283,7 +298,8 @@ def main(argv=None) -> int:
             cert["trace_test"] = resume_trace_test(m, p, X, cert["trace_test"], args.seed, grow=not args.retrace)
             status |= cert["trace_test"]["status"] != "passed"
         elif "trace" in sections:
-            cert["trace_test"] = run_trace_test(m, p, X, args.seed, POSE if args.coordinates == "pose" else None)
+            cert["trace_test"] = run_trace_test(m, p, X, args.seed, POSE if args.coordinates == "pose" else None,
+                                                start=start)
             status |= cert["trace_test"]["status"] != "passed"
         if "monodromy" in sections:
             cert["monodromy_from_scratch"] = run_monodromy(m, args.seed, args.loops_no_progress, p, X)

@@ -297,7 +297,8 @@ class TraceTestOptions:
     * ``tol`` [1e-8]: largest relative trace accepted as zero (see :class:`TraceResult`);
     * ``attempts`` [3]: gammas tried when a pencil path is lost;
     * ``direction_scale`` [1.0]: q0 = p0 + direction_scale (1 + |p0|) z, z standard complex normal;
-    * ``witness_loops_no_progress`` [5]: loops without a new point that end the first W10 monodromy;
+    * ``witness_loops_no_progress`` [5]: the first W10 monodromy runs in batches of this many loops and ends
+      after a batch without a new distinct point (:func:`distinct_points`, conditioning-aware);
     * ``confirm_loops_no_progress`` [3]: the same for the re-solves at other random l;
     * ``confirmations`` [3]: rounds of :func:`complete_witnesses` in a row that must add nothing to W10 (at most
       ``max_confirm_tries`` [8] rounds);
@@ -471,9 +472,12 @@ def distinct_points(system, parameters, X, floor: float = 1e-8, digits_lost: flo
 
 
 def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestOptions | None = None,
-                    verbose: bool = False, coordinates=None):
+                    verbose: bool = False, coordinates=None, start=None):
     """W10 = C cut by l(x) = 0 for a random l (module doc, step 2).  Returns (W10, q0, l, record dict).
-    ``coordinates``: see :func:`verify_solution_completeness`."""
+    ``coordinates``: see :func:`verify_solution_completeness`.  ``start``: points of W10 already known (from an
+    earlier run with the same seed, options and coordinates, hence the same q0 and l): the first monodromy starts
+    from them instead of from one point of W01 (each must solve the slice system at l; ValueError otherwise).
+    How W10 was found does not enter the certificate: the trace decides whether it is complete."""
     o = options or TraceTestOptions()
     cs = _coordinates(system, coordinates, W01)
     k1 = len(cs) + 1
@@ -486,6 +490,22 @@ def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestO
     q0 = np.asarray(q0, dtype=complex)
     slice_ = TraceSliceSystem(system, p0, q0 - p0, cs)
     record = {"moves": [], "monodromy": []}
+    if start is not None:  # the hyperplanes drawn as below (l1 unused), so l is that of the earlier run
+        rng.random(len(cs))
+        l0 = _crandn(rng, k1)
+        Y = np.asarray(start, dtype=complex).reshape(-1, slice_.n)
+        D, merged = distinct_points(slice_, l0, Y)
+        res = np.max(np.abs(slice_.evaluate(D, l0)), axis=1) / (1 + np.max(np.abs(D), axis=1))
+        if not len(D) or not np.all(res <= 1e-8):
+            raise ValueError(f"start points off the slice at l (largest relative residual {np.max(res):.1e})")
+        record["moves"].append({"from": "start points given (an earlier run, same seed)", "paths": int(len(Y)),
+                                "distinct": int(len(D)), "max_relative_residual": float(np.max(res))})
+        W, rec = complete_witnesses(slice_, l0, D, o, seed=seed, verbose=verbose, first=True)
+        record["moves"] += rec["moves"]
+        record["monodromy"] += rec["monodromy"]
+        record.update({k: v for k, v in rec.items() if k not in ("moves", "monodromy")})
+        record["seconds"] = time.perf_counter() - t0
+        return W, q0, np.asarray(l0), record
     # a point of C at s = 1: a point of W01 moved from p0 to q0 (the first that arrives regular)
     y1 = None
     for i in range(len(W01)):
@@ -517,7 +537,8 @@ def complete_witnesses(slice_, l, W, options: TraceTestOptions | None = None, se
                        first: bool = False):
     """Grow the witness set W of ``slice_`` (a :class:`TraceSliceSystem`) at the hyperplane l by monodromy.
 
-    With ``first``, a monodromy run at l from W (``witness_loops_no_progress``).  Then rounds: W is moved to
+    With ``first``, a monodromy run at l from W (``witness_loops_no_progress``; every monodromy run here goes in
+    batches of that many loops and stops after a batch that adds no distinct point).  Then rounds: W is moved to
     another random hyperplane k, completed there by monodromy (``confirm_loops_no_progress``), and the result is
     moved back to l and united with W (distinct points by :func:`distinct_points`); the points a move loses
     (ill-conditioned ones fail now and then) stay in W.  The rounds stop when ``confirmations`` rounds in a row
@@ -528,21 +549,65 @@ def complete_witnesses(slice_, l, W, options: TraceTestOptions | None = None, se
     record = {"moves": [], "monodromy": [], "union_counts": []}
 
     def mono(lk, X, loops_np, s):
-        r = monodromy_solve(slice_, parameters=lk, solutions=X, seed=s,
-                            options=MonodromyOptions(max_loops_no_progress=loops_np, max_loops=o.max_loops,
-                                                     solve=o.solve))
-        D, merged = distinct_points(slice_, lk, r.solutions)
-        record["monodromy"].append({**r.to_dict(), "count_raw": int(len(r.solutions)), "count": int(len(D)),
-                                    "merged": merged["groups"], "start_points": len(np.atleast_2d(X))})
+        # monodromy in batches of loops_np loops, progress measured in distinct points (distinct_points) after
+        # each batch: monodromy's own fixed duplicate test re-adds an ill-conditioned point (cond ~1e9) found
+        # again around a loop as a new one, so its no-progress stop may never come (m = 4: 5 points of condition
+        # 1e9-6e9 came back 37 times in 34 loops, one more every loop or two); stop after a batch that adds none
+        t0 = time.perf_counter()
+        D, merged = distinct_points(slice_, lk, X)
+        start = int(len(D))
+        batches, loops, paths, b, stopped = [], 0, 0, 0, "max_loops"
+        while loops < o.max_loops:
+            r = monodromy_solve(slice_, parameters=lk, solutions=D, seed=s + 10007 * b,
+                                options=MonodromyOptions(max_loops_no_progress=loops_np,
+                                                         max_loops=min(loops_np, o.max_loops - loops),
+                                                         initial_loops=1, solve=o.solve))
+            Dn, merged = distinct_points(slice_, lk, r.solutions)
+            batches.append({**r.to_dict(), "count_raw": int(len(r.solutions)), "count": int(len(Dn)),
+                            "merged": merged["groups"]})
+            loops, paths, b = loops + r.loops, paths + r.paths_tracked, b + 1
+            grew = len(Dn) > len(D)
+            D = Dn
+            if verbose:
+                print(f"  W10 monodromy batch {b}: {r.summary_line()}; {len(D)} distinct", flush=True)
+            if not grew:
+                stopped = "no_progress"
+                break
+        record["monodromy"].append({"count": int(len(D)), "loops": loops, "paths_tracked": paths,
+                                    "seconds": time.perf_counter() - t0, "seed": s, "stopped_by": stopped,
+                                    "start_points": len(np.atleast_2d(X)), "start_distinct": start,
+                                    "loops_per_batch": loops_np, "batches": batches})
         if verbose:
-            print(f"  W10 monodromy: {r.summary_line()}; {len(D)} distinct", flush=True)
+            print(f"  W10 monodromy: {len(D)} distinct ({loops} loops, {paths} paths, "
+                  f"{time.perf_counter() - t0:.0f} s, stopped by {stopped})", flush=True)
         return D
 
-    def move(X, la, lb, what, s):
+    def move(X, la, lb, what, s, detours: int = 2):
+        # paths that fail on the straight segment la -> lb (ill-conditioned points now and then) are tracked again
+        # along another route, la -> a random hyperplane -> lb (``detours`` routes at most)
+        X = np.asarray(X, dtype=complex).reshape(-1, slice_.n)
         paths = _track(slice_, X, la, lb, o.solve, s)
-        Y = np.array([p.endpoint for p in paths if p.status == SUCCESS]).reshape(-1, slice_.n)
-        record["moves"].append({"from": what, "paths": len(paths), "success": int(len(Y))})
-        return Y
+        ok = np.array([p.status == SUCCESS for p in paths], dtype=bool)
+        Y = [p.endpoint for p in paths if p.status == SUCCESS]
+        rec = {"from": what, "paths": len(paths), "success": int(ok.sum()), "detours": []}
+        todo = X[~ok]
+        for d in range(detours):
+            if not len(todo):
+                break
+            mid = _crandn(rng, slice_.m)
+            p1 = _track(slice_, todo, la, mid, o.solve, s + 31 * (d + 1))
+            ok1 = np.array([p.status == SUCCESS for p in p1], dtype=bool)
+            Z = np.array([p.endpoint for p in p1 if p.status == SUCCESS]).reshape(-1, slice_.n)
+            p2 = _track(slice_, Z, mid, lb, o.solve, s + 31 * (d + 1) + 1)
+            ok2 = np.array([p.status == SUCCESS for p in p2], dtype=bool)
+            Y += [p.endpoint for p in p2 if p.status == SUCCESS]
+            rec["detours"].append({"paths": int(len(todo)), "success": int(ok2.sum())})
+            done = np.zeros(len(todo), dtype=bool)
+            done[np.flatnonzero(ok1)[ok2]] = True
+            todo = todo[~done]
+        rec["failed"] = int(len(todo))
+        record["moves"].append(rec)
+        return np.array(Y).reshape(-1, slice_.n)
 
     W = np.asarray(W, dtype=complex).reshape(-1, slice_.n)
     if first:
@@ -660,7 +725,7 @@ def compute_trace(system, p0, q0, l, W01, W10, options: TraceTestOptions | None 
 
 
 def verify_solution_completeness(system, p0, W01, seed: int = 0, options: TraceTestOptions | None = None,
-                                 verbose: bool = False, coordinates=None) -> TraceTestResult:
+                                 verbose: bool = False, coordinates=None, start=None) -> TraceTestResult:
     """Trace test of the solution set W01 of ``system`` at parameters p0 (module doc): W10 by
     :func:`trace_witnesses`, then :func:`compute_trace`.  ``result.status`` is "passed", "failed" or
     "undecided".
@@ -669,10 +734,12 @@ def verify_solution_completeness(system, p0, W01, seed: int = 0, options: TraceT
     (x, s) -> (x_coordinates, s): hyperplanes l and the trace in those coordinates only.  Valid when the
     projection separates the solutions (checked on W01; then C -> C' is birational and witness sets
     correspond); useful when some unknowns (e.g. ones determined linearly by the others) have poles along the
-    curve and so raise its degree, and hence the size of W10."""
+    curve and so raise its degree, and hence the size of W10.  ``start``: known points of W10 (see
+    :func:`trace_witnesses`)."""
     o = options or TraceTestOptions()
     t0 = time.perf_counter()
-    W10, q0, l, rec = trace_witnesses(system, p0, W01, seed=seed, options=o, verbose=verbose, coordinates=coordinates)
+    W10, q0, l, rec = trace_witnesses(system, p0, W01, seed=seed, options=o, verbose=verbose, coordinates=coordinates,
+                                      start=start)
     tr = compute_trace(system, p0, q0, l, W01, W10, o, seed=seed, coordinates=coordinates)
     cs = _coordinates(system, coordinates, W01)
     return TraceTestResult(trace=tr, q0=q0, l=l, W10=W10, witnesses=rec, seed=seed, seconds=time.perf_counter() - t0,
