@@ -433,7 +433,7 @@ def certify_dgp_solutions(robot, solutions, lengths=None, box_rtol: float = BOX_
     return out
 
 
-def certify_endpoints(robot, lengths, groups) -> list:
+def certify_endpoints(robot, lengths, groups, balls=None) -> list:
     """Krawczyk boxes of complex DGP roots (issue 15, item 4), for several taut sets with the same m >= 2 at once.
 
     ``groups``: list of (0-based taut ``cables``, Z (N, 12 + m) complex roots of their taut system in world
@@ -442,7 +442,8 @@ def certify_endpoints(robot, lengths, groups) -> list:
     (:class:`.complex_krawczyk.ComplexRootBoxes`, overlapping (N,) bool): each root proven unique in its box of
     C^(12+m) (real or non-real proven where decidable), and the proven boxes meeting another proven box of the
     same group (those roots are not proven distinct).  Constants: the robot's floats exactly, Q d and rho_i^2
-    enclosed."""
+    enclosed.  ``balls`` (one bool per group, default all True): retry the roots of that group that double
+    precision could not certify in ball arithmetic."""
     from .complex_krawczyk import ComplexRootBoxes, certify_complex_roots, overlapping
     from .interval_boxes import Interval
 
@@ -475,7 +476,9 @@ def certify_endpoints(robot, lengths, groups) -> list:
 
     scale = _scales(robot, m, range(12 + m), robot.size)
     boxes = certify_complex_roots(rigorous, approximate, Z, scale)
-    boxes = _retry_in_balls(robot, rho, rows, Z, scale, boxes)
+    balls = [True] * len(groups) if balls is None else list(balls)
+    retry = np.concatenate([np.full(len(Zg), bool(f)) for (_, Zg), f in zip(groups, balls)]).astype(bool)
+    boxes = _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry)
     out, k0 = [], 0
     for _, Zg in groups:
         sl = slice(k0, k0 + len(Zg))
@@ -492,19 +495,21 @@ BALL_RETRY_MAX = 400  # roots per call retried in ball arithmetic (tens of milli
 BALL_PREC = 256  # bits
 
 
-def _retry_in_balls(robot, rho, rows, Z, scale, boxes):
+def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry):
     """The roots that double-precision interval arithmetic could not certify, tested again in complex ball
-    arithmetic at ``BALL_PREC`` bits (:func:`.complex_krawczyk.certify_complex_root_balls`; at most
-    ``BALL_RETRY_MAX`` of them, the others keep their reason)."""
+    arithmetic at ``BALL_PREC`` bits (:func:`.complex_krawczyk.certify_complex_root_balls`; only rows with
+    ``retry``, at most ``BALL_RETRY_MAX`` of them, the others keep their reason)."""
     from flint import acb, arb, ctx
 
     from .complex_krawczyk import ComplexRootBoxes, certify_complex_root_balls
 
-    todo = [k for k in np.flatnonzero(~boxes.proven) if np.all(np.isfinite(Z[k]))]
-    if not todo:
-        return boxes
+    todo = [k for k in np.flatnonzero(~boxes.proven & retry) if np.all(np.isfinite(Z[k]))]
     proven, lo, hi = boxes.proven.copy(), boxes.lo.copy(), boxes.hi.copy()
     real, nonreal, reason = boxes.real.copy(), boxes.nonreal.copy(), list(boxes.reason)
+    for k in np.flatnonzero(~boxes.proven & ~retry):
+        reason[k] += " (not retried in ball arithmetic: its subproblem has failed paths)"
+    if not todo:
+        return ComplexRootBoxes(proven, lo, hi, real, nonreal, boxes.center, tuple(reason))
     m = rows.shape[1]
     with ctx.workprec(BALL_PREC):
         f = [arb(robot.load) * arb(float(c)) for c in robot.load_direction]

@@ -589,7 +589,10 @@ def _with_endpoint_certificates(robot, rho, items) -> list:
         if Z is not None:
             by_m.setdefault(len(cables), []).append(k)
     for ks in by_m.values():
-        for k, (boxes, over) in zip(ks, certify_endpoints(robot, rho, [(items[k][0], items[k][2]) for k in ks])):
+        # ball arithmetic (slow) only where it can complete a subproblem: not where paths failed
+        balls = [items[k][1].failed_paths == 0 for k in ks]
+        for k, (boxes, over) in zip(ks, certify_endpoints(robot, rho, [(items[k][0], items[k][2]) for k in ks],
+                                                          balls)):
             sub = items[k][1]
             ok = boxes.proven & ~over
             why = {}
