@@ -407,20 +407,9 @@ def _clusters(lam, tol=1e-6):
     np.fill_diagonal(near, False)
     if not near.any():
         return [[i] for i in range(n)]
-    label = list(range(n))
+    from .homotopy.clusters import linked_groups
 
-    def find(i):
-        while label[i] != i:
-            label[i] = label[label[i]]
-            i = label[i]
-        return i
-
-    for i, j in zip(*np.nonzero(np.triu(near))):
-        label[find(i)] = find(j)
-    groups = {}
-    for i in range(n):
-        groups.setdefault(find(i), []).append(i)
-    return list(groups.values())
+    return linked_groups(n, *np.nonzero(np.triu(near)))
 
 
 def _bivariate(C, tol=1e-6):

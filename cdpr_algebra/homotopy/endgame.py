@@ -35,6 +35,7 @@ from dataclasses import dataclass, field, asdict, replace
 
 import numpy as np
 
+from .clusters import linked_groups
 from .results import (AT_INFINITY, DIVERGED, ENDGAME_FAILED, FAILURES, SINGULAR, STEP_TOO_SMALL, SUCCESS,
                       TOO_MANY_STEPS, PathResult)
 from .tracker import TrackerOptions, _norm, _solve, track_segment
@@ -442,6 +443,8 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
     chart = getattr(homotopy, "chart", None)
     proj = None
     if chart is None and eo.projective and hasattr(homotopy, "projective"):
+        from .projective import to_chart
+
         proj = homotopy.projective()
     out_x = x_te.copy()
     status = np.full(N, "", dtype=object)
@@ -469,8 +472,6 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
     if rest.size and proj is not None:
         # first the plain track to t = 0 in the chart: a regular point there with y0 nonzero beyond its accuracy
         # is a regular finite solution, however large (no Cauchy loops); the others go to the endgame below
-        from .projective import to_chart
-
         Yc = to_chart(x_te[rest], proj.chart)
         seg_c = track_segment(proj, Yc, te, 0.0, tr)
         steps[rest] += seg_c.steps
@@ -490,8 +491,6 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
         in_chart = chart is not None or proj is not None
         hend = proj if proj is not None else homotopy
         if proj is not None:
-            from .projective import to_chart
-
             Y0 = to_chart(x_te[rest], proj.chart)
         else:
             Y0 = x_te[rest]
@@ -572,16 +571,10 @@ def duplicate_groups(points: np.ndarray, tol: float) -> list:
     differs (x ~ 1e9, y = +-1) are not taken for one."""
     if len(points) < 2:
         return []
+
     order = np.argsort(points[:, 0].real)
     key = points[order, 0].real
-    parent = list(range(len(points)))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
+    pairs = []
     span = tol * (1 + np.max(np.abs(points)))
     for a_ in range(len(order)):
         b_ = a_ + 1
@@ -589,12 +582,10 @@ def duplicate_groups(points: np.ndarray, tol: float) -> list:
             i, j = order[a_], order[b_]
             scale = 1 + np.maximum(np.abs(points[i]), np.abs(points[j]))
             if np.all(np.abs(points[i] - points[j]) <= tol * scale):
-                parent[find(i)] = find(j)
+                pairs.append((i, j))
             b_ += 1
-    groups = {}
-    for i in range(len(points)):
-        groups.setdefault(find(i), []).append(i)
-    return [g for g in groups.values() if len(g) > 1]
+    i, j = np.array(pairs, dtype=np.int64).reshape(-1, 2).T
+    return [g for g in linked_groups(len(points), i, j) if len(g) > 1]
 
 
 def mp_path(homotopy, x0, index, opts: SolveOptions, tr: TrackerOptions, steps: int = 0):

@@ -49,6 +49,7 @@ from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 
+from .clusters import linked_groups
 from .endgame import SolveOptions, duplicate_groups
 from .homotopies import ParameterHomotopy
 from .monodromy import MonodromyOptions, monodromy_solve
@@ -448,25 +449,17 @@ def distinct_points(system, parameters, X, floor: float = 1e-8, digits_lost: flo
     cond = np.where(np.isfinite(cond), cond, 1e16)
     scale = 1 + np.max(np.abs(Xr), axis=1)
     tol = np.maximum(floor, digits_lost * 2.2e-16 * cond)
-    parent = list(range(len(Xr)))
-
-    def find(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
+    pi, pj = [], []
     for i in range(len(Xr) - 1):
         d = np.max(np.abs(Xr[i + 1:] - Xr[i]), axis=1) / np.maximum(scale[i + 1:], scale[i])
-        for j in np.flatnonzero(d <= np.maximum(tol[i + 1:], tol[i])) + i + 1:
-            parent[find(int(j))] = find(i)
-    groups = {}
-    for i in range(len(Xr)):
-        groups.setdefault(find(i), []).append(i)
-    keep = sorted(g[int(np.argmin(cond[g]))] for g in groups.values())
+        close = np.flatnonzero(d <= np.maximum(tol[i + 1:], tol[i])) + i + 1
+        pi += [i] * len(close)
+        pj += close.tolist()
+    groups = linked_groups(len(Xr), pi, pj)
+    keep = sorted(g[int(np.argmin(cond[g]))] for g in groups)
     merged = [{"size": len(g), "norm": float(np.max(scale[g]) - 1), "condition": float(np.max(cond[g])),
                "spread": float(np.max(np.abs(Xr[g] - Xr[g[0]])) / np.max(scale[g]))}
-              for g in groups.values() if len(g) > 1]
+              for g in groups if len(g) > 1]
     return Xr[keep], {"rule": f"relative distance <= max({floor:g}, {digits_lost:g} * 2.2e-16 * cond)",
                       "groups": merged, "max_condition": float(np.max(cond)), "max_residual": float(np.max(res))}
 
