@@ -460,19 +460,20 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
     f_float = [robot.load * float(c) for c in robot.load_direction]
     f_iv = [Interval.point(robot.load) * float(c) for c in robot.load_direction]
 
-    def rigorous(x, r, jac):  # the constants of the taut sets of the rows r, exact floats, rho^2 enclosed
-        cab = rows[r]
-        A = [[robot.base[cab[:, i], k] for k in range(3)] for i in range(m)]
-        b = [[robot.platform[cab[:, i], k] for k in range(3)] for i in range(m)]
-        rho2 = [Interval.point(rho[cab[:, i]]).sqr() for i in range(m)]
-        return taut_system(x, A, b, g, f_iv, rho2, jacobian=jac)
+    def system(f, square):
+        """The taut system of the rows r with the constants of their taut sets (exact floats; f and rho^2 as
+        ``square`` makes them)."""
 
-    def approximate(x, r, jac):
-        cab = rows[r]
-        A = [[robot.base[cab[:, i], k] for k in range(3)] for i in range(m)]
-        b = [[robot.platform[cab[:, i], k] for k in range(3)] for i in range(m)]
-        rho2 = [rho[cab[:, i]] ** 2 for i in range(m)]
-        return taut_system(x, A, b, g, f_float, rho2, jacobian=jac)
+        def evaluate(x, r, jac):
+            cab = rows[r]
+            A = [[robot.base[cab[:, i], k] for k in range(3)] for i in range(m)]
+            b = [[robot.platform[cab[:, i], k] for k in range(3)] for i in range(m)]
+            return taut_system(x, A, b, g, f, [square(rho[cab[:, i]]) for i in range(m)], jacobian=jac)
+
+        return evaluate
+
+    rigorous = system(f_iv, lambda v: Interval.point(v).sqr())  # rho^2 enclosed
+    approximate = system(f_float, lambda v: v ** 2)
 
     scale = _scales(robot, m, range(12 + m), robot.size)
     boxes = certify_complex_roots(rigorous, approximate, Z, scale)

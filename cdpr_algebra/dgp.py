@@ -476,9 +476,9 @@ def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, opti
     """(DGPSubproblem, [DGPSolution]) for the 0-based taut set ``cables`` (pruning, tracking, filtering, and
     with ``certify`` an interval certificate for every admissible solution, :mod:`.certify`); ``options``: the
     homotopy's :class:`.homotopy.endgame.SolveOptions` (default: those of the module doc)."""
-    sub, sols, Z = _solve_taut_set(robot, rho, cables, seed, options)
+    sub, sols, Z = _solve_and_certify_solutions(robot, rho, cables, seed, certify, options)
     (sub,) = _with_endpoint_certificates(robot, rho, [(cables, sub, Z)])
-    return sub, _certify_solutions(robot, rho, sols) if certify else sols
+    return sub, sols
 
 
 def _certify_solutions(robot, rho, sols):
