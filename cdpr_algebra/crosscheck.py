@@ -228,15 +228,17 @@ def _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only, hwhy=N
 
 
 def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed: int = 0,
-                     interval_result=None) -> SubproblemComparison:
+                     interval_result=None, homotopy_result=None) -> SubproblemComparison:
     """Both solvers on the 0-based taut set ``cables`` (rho: all n lengths) and their comparison
-    (``interval_result``: an :class:`.interval_bp.IntervalSubproblem` already computed for this set)."""
+    (``interval_result``: an :class:`.interval_bp.IntervalSubproblem` already computed for this set;
+    ``homotopy_result``: the pair (DGPSubproblem, its admissible DGPSolutions) of the homotopy DGP already
+    computed for this set at these lengths, e.g. taken from a :func:`.dgp.dgp` result)."""
     rho = np.asarray(rho, dtype=float)
     cables = tuple(sorted(cables))
     taut1 = tuple(c + 1 for c in cables)
     t0 = time.perf_counter()
-    hsub, hsols = _homotopy(robot, rho, cables, seed)
-    th = time.perf_counter() - t0
+    hsub, hsols = homotopy_result if homotopy_result is not None else _homotopy(robot, rho, cables, seed)
+    th = time.perf_counter() - t0 if homotopy_result is None else hsub.seconds
     hskip = hsub.skipped
     hcount = len(hsols)
     hfailed = int(getattr(hsub, "failed_paths", 0) or 0)

@@ -167,3 +167,24 @@ def test_cli_exit_status_and_json(monkeypatch, capsys, boundary_case):
     code = main(["crosscheck", ROBOT, "--lengths", "1", "10", "10", "--taut", "1", "3", "--json"])
     out = json.loads(capsys.readouterr().out)
     assert code == 0 and out["agree"] is True and out["summary"]["agree"] == 1
+
+
+def test_comparison_reuses_a_dgp_run(test1):
+    """A comparison built on the subproblem of an earlier whole-robot DGP (``homotopy_result``, taken with
+    ``DGPResult.taut_set``) says what a comparison that runs the homotopy itself says, on every taut set."""
+    from cdpr_algebra.dgp import dgp, lengths_and_taut_sets
+
+    res = dgp(test1)
+    rho, sets = lengths_and_taut_sets(test1, None, 6)
+    for c in sets:
+        sub, sols = res.taut_set([i + 1 for i in c])
+        assert sub.taut == tuple(i + 1 for i in c) and all(s.taut == sub.taut for s in sols)
+        a = compare_taut_set(test1, rho, c, homotopy_result=(sub, sols))
+        b = compare_taut_set(test1, rho, c)
+        assert (a.homotopy, a.interval, a.agree, a.compared) == (b.homotopy, b.interval, b.agree, b.compared)
+        if sols:  # the given result is what is compared: without its solutions, the interval ones are unmatched
+            d = compare_taut_set(test1, rho, c, homotopy_result=(sub, ()))
+            assert d.homotopy == 0 and d.agree is False and len(d.interval_only) == len(sols)
+    assert sum(len(res.taut_set([i + 1 for i in c])[1]) for c in sets) == len(res.solutions) > 0
+    with pytest.raises(KeyError, match="not solved"):
+        res.taut_set([1, 2, 3, 4])

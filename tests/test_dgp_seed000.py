@@ -20,9 +20,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cdpr_algebra.dgp import available_m, dgp
-from cdpr_algebra.robot import load_robot
+from cdpr_algebra.dgp import available_m
 from accounting import expected_complete
+from shared_runs import dgp_run
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLES = json.loads((ROOT / "tests" / "data" / "seed000_tables.json").read_text())["tables"]
@@ -31,19 +31,14 @@ pytestmark = [pytest.mark.slow,
               pytest.mark.skipif(not {2, 3, 4, 5, 6} <= set(available_m()), reason="generic sets not stored")]
 
 
-def _run(name):
-    robot = load_robot(ROOT / "examples" / f"{name}.toml")
-    return robot, dgp(robot, jobs=2)
-
-
 @pytest.fixture(scope="module")
 def test2():
-    return _run("seed000_test2")
+    return dgp_run("seed000_test2")
 
 
 @pytest.fixture(scope="module")
 def test3():
-    return _run("seed000_test3")
+    return dgp_run("seed000_test3")
 
 
 def _angle_diff(a, b):
@@ -78,6 +73,7 @@ def _all_certified_and_consistent(robot, res):
         assert c.box_width <= 1e-9 * robot.size * (1 + 1e-9)  # the issue's tightness: 1e-9 of the robot size
 
 
+@pytest.mark.xdist_group('seed000_test2')
 def test_seed000_test2_counts_and_certificates(test2):
     robot, res = test2
     assert len(res.subproblems) == 63
@@ -89,6 +85,7 @@ def test_seed000_test2_counts_and_certificates(test2):
     _all_certified_and_consistent(robot, res)
 
 
+@pytest.mark.xdist_group('seed000_test2')
 def test_seed000_test2_printed_rows(test2):
     """The 5 printed rows (the stable solutions).  The platform is about 0.07 m wide and printed to 3 decimals
     (+-0.5 mm), which moves angles by up to 0.026 rad and tensions by about 1e-2 (see the table's note)."""
@@ -105,6 +102,7 @@ def test_seed000_test2_printed_rows(test2):
     assert {id(s) for s in found} == {id(s) for s in res.stable}
 
 
+@pytest.mark.xdist_group('seed000_test3')
 def test_seed000_test3_counts_and_certificates(test3):
     robot, res = test3
     assert len(res.subproblems) == 63
@@ -114,6 +112,7 @@ def test_seed000_test3_counts_and_certificates(test3):
     _all_certified_and_consistent(robot, res)
 
 
+@pytest.mark.xdist_group('seed000_test3')
 def test_seed000_test3_printed_rows(test3):
     robot, res = test3
     rows = TABLES["3"]["rows"]

@@ -15,6 +15,7 @@ from cdpr_algebra.dgp import available_m
 from cdpr_algebra.interval_bp import build_model, solve_taut_set_interval
 from cdpr_algebra.pose import rotation_taking
 from cdpr_algebra.robot import Robot, load_robot
+from shared_runs import dgp_run
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLES = json.loads((ROOT / "tests" / "data" / "seed000_tables.json").read_text())["tables"]
@@ -378,10 +379,11 @@ def _crosscheck_all_agree(name):
     from cdpr_algebra.crosscheck import CrosscheckResult, compare_taut_set, crosscheck_table
     from cdpr_algebra.dgp import lengths_and_taut_sets
 
-    robot = load_robot(ROOT / "examples" / f"{name}.toml")
+    robot, hom = dgp_run(name)  # the homotopy DGP of tests/test_dgp_seed000.py (same worker: xdist_group)
     rho, sets = lengths_and_taut_sets(robot, None, 6)
     subs = [solve_taut_set_interval(robot, rho, c) for c in sets]
-    comps = tuple(compare_taut_set(robot, rho, c, interval_result=s) for c, s in zip(sets, subs))
+    comps = tuple(compare_taut_set(robot, rho, c, interval_result=s, homotopy_result=hom.taut_set([i + 1 for i in c]))
+                  for c, s in zip(sets, subs))
     res = CrosscheckResult(robot.name, rho, comps, 0.0)
     assert len(comps) == 63
     assert not res.disagreements, crosscheck_table(res)
@@ -393,6 +395,7 @@ def _crosscheck_all_agree(name):
 
 
 @pytest.mark.slow
+@pytest.mark.xdist_group("seed000_test2")
 @pytest.mark.skipif(not {2, 3, 4, 5, 6} <= set(available_m()), reason="generic sets of the homotopy DGP not stored")
 def test_crosscheck_agrees_on_every_subproblem_of_test2():
     """Seed 000 Test 2 (Sec. 5.2, corrected b1', b2'): the interval B&P and the homotopy agree on all 63
@@ -416,6 +419,7 @@ def test_crosscheck_agrees_on_every_subproblem_of_test2():
 
 
 @pytest.mark.slow
+@pytest.mark.xdist_group("seed000_test3")
 @pytest.mark.skipif(not {2, 3, 4, 5, 6} <= set(available_m()), reason="generic sets of the homotopy DGP not stored")
 def test_crosscheck_agrees_on_every_subproblem_of_test3():
     """Seed 000 Test 3 (Sec. 5.3, MARIONET-VR): the interval B&P and the homotopy agree on all 63 subproblems.
