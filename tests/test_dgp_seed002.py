@@ -17,6 +17,9 @@ from accounting import expected_complete
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
+# both tests check one ~3-minute run: one worker runs them (--dist loadgroup), the module fixture serves both
+pytestmark = pytest.mark.xdist_group("seed002_dgp")
+
 PRINTED_CCS_AT_012 = {(1, 2, 3, 4, 5, 6), (1, 3, 4, 5, 6, 8), (2, 3, 4, 5, 6, 7), (3, 4, 5, 6, 7, 8)}
 
 
