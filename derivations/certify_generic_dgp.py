@@ -239,19 +239,38 @@ def run_phc(m, seed, timeout, p_stored, X_stored, verbose=True):
             print(f"m = {m}: phc -b stopped after {res['wall']:.0f} s (timeout)", flush=True)
         return out
     S = res["solutions"]
+    out.update({"status": "finished", "regular": int(len(S)), "regular_real": res["real"],
+                "solutions": _c(S)})
+    out.update(phc_match(m, seed, out, p_stored, X_stored, verbose))
+    if verbose:
+        print(f"m = {m}: phc -b {res['wall']:.0f} s, mixed volume {res['paths']}, {len(S)} regular", flush=True)
+    return out
+
+
+def phc_match(m, seed, phc, p_stored, X_stored, verbose=True):
+    """Compare PHCpack's regular solutions (recorded in ``phc``) with the stored set moved to PHCpack's instance:
+    both refined by Newton and de-duplicated with the conditioning-aware test of
+    :func:`cdpr_algebra.homotopy.trace_test.distinct_points` (so a path of the move that jumped onto another's
+    endpoint shows as a missing point, not as a match), then matched both ways."""
+    fam = fast_family(m)
+    p = _uc(phc["parameters"])
+    S = _uc(phc["solutions"]).reshape(-1, fam.n)
     lam = S[:, 12:12 + m]
     zero = np.any(np.abs(lam) <= 1e-8 * (1 + np.max(np.abs(S), axis=1))[:, None], axis=1)
+    P, _ = distinct_points(fam, p, S[~zero])
     Y, counts = _move_stored(m, p_stored, X_stored, p, seed)
-    a, b = _match(Y, S[~zero])
-    out.update({"status": "finished", "regular": int(len(S)), "regular_real": res["real"],
-                "regular_all_lam_nonzero": int((~zero).sum()), "regular_some_lam_zero": int(zero.sum()),
-                "stored_moved": {"paths": int(len(X_stored)), "outcomes": counts, "arrived": int(len(Y)),
-                                 "stored_matched": a, "moved_unmatched": int(len(Y) - a), "phc_matched": b}})
+    D, _ = distinct_points(fam, p, Y)
+    a, b = _match(D, P)
+    rec = {"regular_all_lam_nonzero": int((~zero).sum()), "regular_some_lam_zero": int(zero.sum()),
+           "phc_distinct": int(len(P)),
+           "stored_moved": {"paths": int(len(X_stored)), "outcomes": counts, "arrived": int(len(Y)),
+                            "distinct": int(len(D)), "stored_matched": a, "moved_unmatched": int(len(D) - a),
+                            "phc_matched": b, "phc_unmatched": int(len(P) - b)}}
     if verbose:
-        print(f"m = {m}: phc -b {res['wall']:.0f} s, mixed volume {res['paths']}, {len(S)} regular: "
-              f"{int((~zero).sum())} with every lam_i != 0, {int(zero.sum())} with some lam_i = 0; stored set moved "
-              f"there: {a} of {len(X_stored)} match a PHCpack solution", flush=True)
-    return out
+        print(f"m = {m}: PHCpack {len(P)} distinct solutions with every lam_i != 0 ({int(zero.sum())} with some "
+              f"lam_i = 0); stored set moved there: {len(D)} distinct of {len(X_stored)}, {a} match a PHCpack "
+              f"solution, {b} of PHCpack's {len(P)} matched", flush=True)
+    return rec
 
 
 def main(argv=None) -> int:
@@ -262,6 +281,8 @@ def main(argv=None) -> int:
                     help="sections to compute (default: trace and monodromy, plus phc with --phc)")
     ap.add_argument("--phc", action="store_true", help="also PHCpack's blackbox on a random complex instance")
     ap.add_argument("--phc-timeout", type=float, default=3 * 3600.0)
+    ap.add_argument("--rematch", action="store_true",
+                    help="with --only phc: match the recorded PHCpack solutions again, without running phc")
     ap.add_argument("--loops-no-progress", type=int, default=10)
     ap.add_argument("--resume", action="store_true",
                     help="continue a recorded trace test that failed or was undecided (grow its W10, trace again)")
@@ -304,7 +325,13 @@ def main(argv=None) -> int:
         if "monodromy" in sections:
             cert["monodromy_from_scratch"] = run_monodromy(m, args.seed, args.loops_no_progress, p, X)
             status |= cert["monodromy_from_scratch"]["count"] != len(X)
-        if "phc" in sections:
+        if "phc" in sections and args.rematch:
+            if "solutions" not in cert.get("phc", {}):
+                print(f"m = {m}: no recorded PHCpack solutions to match (run --only phc first)", flush=True)
+                status = 1
+            else:
+                cert["phc"].update(phc_match(m, args.seed, cert["phc"], p, X))
+        elif "phc" in sections:
             cert["phc"] = run_phc(m, args.seed, args.phc_timeout, p, X)
         if "trace_test" in cert and cert["trace_test"]["status"] == "passed":
             cert["count"] = cert["trace_test"]["count"]
