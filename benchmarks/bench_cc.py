@@ -24,9 +24,9 @@ sys.path.insert(0, str(ROOT))
 import numpy as np  # noqa: E402
 
 from cdpr_algebra import cc_radii  # noqa: E402
-from cdpr_algebra.cc_radii import cc_radii_many  # noqa: E402
-from cdpr_algebra.configurations import valid_configurations  # noqa: E402
-from cdpr_algebra.robot import load_robot  # noqa: E402
+from cdpr_algebra.cc.radii import cc_radii_many  # noqa: E402
+from cdpr_algebra.cc.configurations import valid_configurations  # noqa: E402
+from cdpr_algebra.model.robot import load_robot  # noqa: E402
 
 POSES = [(0.0, 1.0, 2.0), (1.0, 0.0, 2.0)]
 
@@ -68,7 +68,7 @@ def main():
               f"({'singular' if r.limiting == 'singular' else r.limiting + 1}), certified {r.certified}, "
               f"failed paths {r.failed_paths}")
 
-    from cdpr_algebra.cc_uncertainty import uncertainty_check
+    from cdpr_algebra.cc.uncertainty import uncertainty_check
 
     med, times, u, cpu = timed(lambda: uncertainty_check(robot, POSES[0], (2, 3, 4, 5, 6, 7), None, 0.005, 0.001,
                                                          0.005), args.repeat)
@@ -77,7 +77,7 @@ def main():
           f"{np.round(u.tension_bounds, 4).tolist()}")
 
     if not args.no_second:
-        from cdpr_algebra.cc_safety import exclusion_proof
+        from cdpr_algebra.cc.safety import exclusion_proof
 
         t = time.perf_counter()
         out = []
@@ -88,7 +88,7 @@ def main():
         print(f"second criterion (interval exclusion, R = 0.03), 8 CCs: {time.perf_counter() - t:.2f} s: {out}")
 
     if not args.no_paths:
-        from cdpr_algebra.cc_paths import parse_path, path_radii
+        from cdpr_algebra.cc.paths import parse_path, path_radii
 
         for exprs, rng in ((["cos(t)", "sin(t)", "2"], (0, np.pi / 2)),
                            (["1 + 0.4*cos(t)", "0.4*sin(t)", "2"], (0, 2 * np.pi))):

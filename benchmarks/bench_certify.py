@@ -19,10 +19,10 @@ import numpy as np
 from flint import arb, arb_mat
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.certify import certify_dgp_solutions, taut_system, with_certificates
-from cdpr_algebra.dgp import dgp, solve_taut_set
-from cdpr_algebra.dgp_equations import encode
-from cdpr_algebra.igp_position import igp_position
+from cdpr_algebra.certify.equilibria import certify_dgp_solutions, taut_system, with_certificates
+from cdpr_algebra.dgp.solve import dgp, solve_taut_set
+from cdpr_algebra.model.taut_equations import encode
+from cdpr_algebra.igp.position import igp_position
 from timing import median_time  # benchmarks/timing.py (the script folder is on sys.path)
 
 ROOT = Path(__file__).resolve().parent.parent

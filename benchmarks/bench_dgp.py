@@ -4,7 +4,7 @@ generic sets for m = 4 .. 6 are stored, Test 3 (63 subproblems, target <= 10 s o
     python benchmarks/bench_dgp.py [--repeat 3] [--jobs N] [--no-test3] [--test2] [--phc] [--phc-test3] [--phc-timeout S]
 
 ``--phc`` also solves the homotopy subproblems (m >= 2) of Test 1 with PHCpack's blackbox (``phc -b``, Debian
-package ``phcpack``) in the same run, on the same normalized equations (:func:`cdpr_algebra.dgp_equations.taut_family`
+package ``phcpack``) in the same run, on the same normalized equations (:func:`cdpr_algebra.model.taut_equations.taut_family`
 at the robot's parameters), next to our time for that subproblem alone (median of ``--repeat``, one thread);
 ``--phc-test3`` does the same for the first subproblem of each m = 2..6 of Test 3 (each PHCpack run stopped
 after ``--phc-timeout`` seconds, default 1800).
@@ -27,8 +27,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from cdpr_algebra.dgp import available_m, dgp  # noqa: E402
-from cdpr_algebra.robot import load_robot  # noqa: E402
+from cdpr_algebra.dgp.solve import available_m, dgp  # noqa: E402
+from cdpr_algebra.model.robot import load_robot  # noqa: E402
 
 
 def bench(path, repeat, jobs):
@@ -60,8 +60,8 @@ def phc_compare(path, cable_sets, repeat, timeout):
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bench_homotopy import phc_run
 
-    from cdpr_algebra.dgp import _normalized, lengths_and_taut_sets, solve_taut_set
-    from cdpr_algebra.dgp_equations import taut_family
+    from cdpr_algebra.dgp.solve import _normalized, lengths_and_taut_sets, solve_taut_set
+    from cdpr_algebra.model.taut_equations import taut_family
 
     robot = load_robot(path)
     rho, _ = lengths_and_taut_sets(robot)

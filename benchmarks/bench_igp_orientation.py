@@ -15,7 +15,7 @@ import sympy as sp
 from scipy.spatial.transform import Rotation
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.igp_orientation import exact_solution, igp_orientation, igp_orientation_batch
+from cdpr_algebra.igp.orientation import exact_solution, igp_orientation, igp_orientation_batch
 from timing import median_time  # benchmarks/timing.py (the script folder is on sys.path)
 
 ROOT = Path(__file__).resolve().parent.parent

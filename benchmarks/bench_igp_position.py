@@ -17,9 +17,9 @@ from pathlib import Path
 import numpy as np
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.igp_position import dialytic_determinant, igp_position, solve_euler_parameters
-from cdpr_algebra.pose import matrix_from_euler_parameters
-from cdpr_algebra.results import make_solutions
+from cdpr_algebra.igp.position import dialytic_determinant, igp_position, solve_euler_parameters
+from cdpr_algebra.model.pose import matrix_from_euler_parameters
+from cdpr_algebra.igp.results import make_solutions
 from timing import median_time  # benchmarks/timing.py (the script folder is on sys.path)
 
 ROOT = Path(__file__).resolve().parent.parent

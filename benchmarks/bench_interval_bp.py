@@ -24,8 +24,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from cdpr_algebra.interval_bp import interval_dgp, solve_taut_set_interval  # noqa: E402
-from cdpr_algebra.robot import load_robot  # noqa: E402
+from cdpr_algebra.bp.solver import interval_dgp, solve_taut_set_interval  # noqa: E402
+from cdpr_algebra.model.robot import load_robot  # noqa: E402
 
 # name: (published seconds, published counts by m, homotopy admissible counts by m)
 PUBLISHED = {"seed000_test1": (25.0, {3: 6, 2: 0, 1: 0}, {3: 6, 2: 0, 1: 0}),

@@ -2,6 +2,6 @@
 
 import sys
 
-from .cli import main
+from cdpr_algebra.cli.main import main
 
 sys.exit(main())

@@ -52,7 +52,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "derivations"))
 
-from cdpr_algebra.dgp import fast_family, generic_path  # noqa: E402
+from cdpr_algebra.dgp.solve import fast_family, generic_path  # noqa: E402
 from cdpr_algebra.homotopy.endgame import SolveOptions  # noqa: E402
 from cdpr_algebra.homotopy.monodromy import MonodromyOptions, load_instance, monodromy_solve  # noqa: E402
 from cdpr_algebra.homotopy.solve import solve_parameter_homotopy  # noqa: E402
@@ -182,7 +182,7 @@ def resume_trace_test(m, p, X, prev, seed, grow=True, verbose=True):
 
 def run_monodromy(m, seed, loops_no_progress, p_stored, X_stored, verbose=True):
     from solve_generic_dgp import complex_rotation, regular_robot  # noqa: E402
-    from cdpr_algebra.dgp_equations import encode
+    from cdpr_algebra.model.taut_equations import encode
 
     fam = fast_family(m)
     rng = np.random.default_rng(seed)
@@ -217,7 +217,7 @@ def run_phc(m, seed, timeout, p_stored, X_stored, verbose=True):
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bench_homotopy import phc_run  # noqa: E402
     from solve_generic_dgp import regular_robot  # noqa: E402
-    from cdpr_algebra.dgp_equations import taut_family
+    from cdpr_algebra.model.taut_equations import taut_family
     from cdpr_algebra.homotopy.systems import PolynomialSystem
 
     fam = taut_family(m)

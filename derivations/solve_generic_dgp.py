@@ -11,7 +11,7 @@ Method (see :mod:`cdpr_algebra.homotopy.monodromy`):
 
 * seed point x0 = encode(p, R, lam) with R a random *complex* rotation (from a complex quaternion q,
   q.q = 1), so x0 satisfies the parameter-free rotation equations; the parameters are then found by
-  minimum-norm Gauss-Newton from ``p_guess``, a robot of unit size (the scale :mod:`cdpr_algebra.dgp`
+  minimum-norm Gauss-Newton from ``p_guess``, a robot of unit size (the scale :mod:`cdpr_algebra.dgp.solve`
   normalizes every robot to: base centred at the origin, lengths divided by the robot size, load 1)
   with the load along -z, plus complex noise, so parameter homotopies to real robots are short;
 * monodromy loops until the published generic count (24, 156, 216, 140, 40 for m = 2 .. 6) is reached;
@@ -40,8 +40,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from cdpr_algebra.dgp import fast_family  # noqa: E402
-from cdpr_algebra.dgp_equations import encode, taut_family  # noqa: E402
+from cdpr_algebra.dgp.solve import fast_family  # noqa: E402
+from cdpr_algebra.model.taut_equations import encode, taut_family  # noqa: E402
 from cdpr_algebra.homotopy.monodromy import MonodromyOptions, monodromy_solve, save_instance  # noqa: E402
 
 PUBLISHED = {2: 24, 3: 156, 4: 216, 5: 140, 6: 40}

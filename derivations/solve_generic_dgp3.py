@@ -26,7 +26,7 @@ sys.path.insert(0, str(ROOT))
 
 from cdpr_algebra.homotopy.families import dgp3_family, dgp3_parameters  # noqa: E402
 from cdpr_algebra.homotopy.monodromy import MonodromyOptions, monodromy_solve, save_instance  # noqa: E402
-from cdpr_algebra.robot import load_robot  # noqa: E402
+from cdpr_algebra.model.robot import load_robot  # noqa: E402
 
 DATA = ROOT / "cdpr_algebra" / "data" / "dgp3_generic.json"
 ROBOT = ROOT / "examples" / "seed000_test1.toml"

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from cdpr_algebra.pose import matrix_from_angles
+from cdpr_algebra.model.pose import matrix_from_angles
 
 
 def hang_platform(rng, B, U, G):

@@ -14,7 +14,7 @@ residual is checked), regular when delta != 0.
 
 import numpy as np
 
-from cdpr_algebra.robot import Robot
+from cdpr_algebra.model.robot import Robot
 from equilibria import hang_platform
 
 

@@ -13,8 +13,8 @@ ROOT = Path(__file__).resolve().parent.parent
 @lru_cache(maxsize=None)
 def dgp_run(name: str):
     """(robot, DGPResult) of ``examples/{name}.toml`` at its stored lengths (two threads)."""
-    from cdpr_algebra.dgp import dgp
-    from cdpr_algebra.robot import load_robot
+    from cdpr_algebra.dgp.solve import dgp
+    from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(ROOT / "examples" / f"{name}.toml")
     return robot, dgp(robot, jobs=2)

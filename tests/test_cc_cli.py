@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from cdpr_algebra.cli import main
+from cdpr_algebra.cli.main import main
 
 ROBOT = "examples/seed002_8cables.toml"
 KEYS = {"cables", "tensions", "radii", "rmin", "safe_nearby", "robust_to_uncertainty", "counterexample"}

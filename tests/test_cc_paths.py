@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.cc_paths import crossings, parse_path, path_configurations, path_radii
-from cdpr_algebra.cc_radii import cc_radii_many
-from cdpr_algebra.configurations import configuration_tensions
-from cdpr_algebra.errors import CdprInputError
+from cdpr_algebra.cc.paths import crossings, parse_path, path_configurations, path_radii
+from cdpr_algebra.cc.radii import cc_radii_many
+from cdpr_algebra.cc.configurations import configuration_tensions
+from cdpr_algebra.model.errors import CdprInputError
 
 CC345678 = (2, 3, 4, 5, 6, 7)
 

@@ -12,12 +12,12 @@ import json
 import numpy as np
 import pytest
 
-from cdpr_algebra import cc_radii as radii_mod
-from cdpr_algebra import cc_safety as safety_mod
+from cdpr_algebra.cc import radii as radii_mod
+from cdpr_algebra.cc import safety as safety_mod
 from cdpr_algebra import load_robot
-from cdpr_algebra.cc_radii import MONOMIALS, arb_cubic, cc_radii, exclude_critical_points, prove_nearest
-from cdpr_algebra.cc_safety import PROOF, SEARCH, distance_upper_bound, pose_distance, safety
-from cdpr_algebra.cli import main
+from cdpr_algebra.cc.radii import MONOMIALS, arb_cubic, cc_radii, exclude_critical_points, prove_nearest
+from cdpr_algebra.cc.safety import PROOF, SEARCH, distance_upper_bound, pose_distance, safety
+from cdpr_algebra.cli.main import main
 
 ROBOT = "examples/seed002_8cables.toml"
 
@@ -100,7 +100,7 @@ def test_cli_radius_json_and_table(capsys):
 def test_distance_upper_bound_encloses_the_distance():
     """On the certified equilibria of seed 000 Test 1 (3 taut cables): the ball-arithmetic bound is >= the float
     distance and within 1e-6 of it; no bound without a proven box."""
-    from cdpr_algebra.dgp import solve_taut_set
+    from cdpr_algebra.dgp.solve import solve_taut_set
 
     robot = load_robot("examples/seed000_test1.toml")
     _, sols = solve_taut_set(robot, robot.lengths, (0, 1, 2))
@@ -138,7 +138,7 @@ def test_second_criterion_names_its_method(robot, monkeypatch, capsys):
     n = far.nearest
     assert n["certified"] and n["distance"] <= n["distance_upper_bound"] <= 2.5
     # plain statics at the counterexample: taut cables at the pose's lengths, forces and moments balanced
-    from cdpr_algebra.pose import matrix_from_angles
+    from cdpr_algebra.model.pose import matrix_from_angles
 
     cables = list(res.cables)
     R = matrix_from_angles(*n["angles"])

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.cc_radii import cc_radii
-from cdpr_algebra.cc_safety import exclusion_proof, pose_distance, safety
-from cdpr_algebra.errors import CdprInputError
-from cdpr_algebra.pose import matrix_from_angles, matrix_from_rodrigues
+from cdpr_algebra.cc.radii import cc_radii
+from cdpr_algebra.cc.safety import exclusion_proof, pose_distance, safety
+from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.model.pose import matrix_from_angles, matrix_from_rodrigues
 
 CCS = {
     (0, 1, 2): [[1, 2, 3, 4, 5, 6], [1, 3, 4, 5, 6, 8], [2, 3, 4, 5, 6, 7], [3, 4, 5, 6, 7, 8]],

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.cc_uncertainty import uncertainty_check
-from cdpr_algebra.errors import CdprInputError
-from cdpr_algebra.pose import matrix_from_angles
+from cdpr_algebra.cc.uncertainty import uncertainty_check
+from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.model.pose import matrix_from_angles
 
 CC = (2, 3, 4, 5, 6, 7)
 

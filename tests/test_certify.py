@@ -15,17 +15,17 @@ import pytest
 from flint import arb
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.certify import (BOX_RTOL, certify_dgp_solutions, certify_igp_orientation, certify_taut_root,
+from cdpr_algebra.certify.equilibria import (BOX_RTOL, certify_dgp_solutions, certify_igp_orientation, certify_taut_root,
                                   taut_system)
-from cdpr_algebra.dgp import dgp, solve_taut_set
-from cdpr_algebra.dgp_equations import taut_family
-from cdpr_algebra.dgp_one_cable import one_cable_equilibria
-from cdpr_algebra.igp_orientation import igp_orientation
-from cdpr_algebra.igp_position import igp_position
-from cdpr_algebra.intervals import krawczyk_certify, symmetric_inertia
-from cdpr_algebra.robot import Robot
-from cdpr_algebra.stability import stability_classes
-from cdpr_algebra.tables import igp_table
+from cdpr_algebra.dgp.solve import dgp, solve_taut_set
+from cdpr_algebra.model.taut_equations import taut_family
+from cdpr_algebra.dgp.one_cable import one_cable_equilibria
+from cdpr_algebra.igp.orientation import igp_orientation
+from cdpr_algebra.igp.position import igp_position
+from cdpr_algebra.intervals.balls import krawczyk_certify, symmetric_inertia
+from cdpr_algebra.model.robot import Robot
+from cdpr_algebra.model.stability import stability_classes
+from cdpr_algebra.report.tables import igp_table
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLES = json.loads((ROOT / "tests" / "data" / "seed000_tables.json").read_text())["tables"]

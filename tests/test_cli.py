@@ -6,7 +6,7 @@ import sys
 
 import numpy as np
 
-from cdpr_algebra.cli import main
+from cdpr_algebra.cli.main import main
 
 KEYS = {"position", "com_position", "rotation", "angles", "euler_parameters", "lengths", "tensions", "admissible",
         "hessian", "stable", "real"}

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cdpr_algebra.complex_krawczyk import certify_complex_roots, overlapping
+from cdpr_algebra.intervals.complex_krawczyk import certify_complex_roots, overlapping
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -66,7 +66,7 @@ def test_negative_controls():
 
 @pytest.fixture(scope="module")
 def test1():
-    from cdpr_algebra.robot import load_robot
+    from cdpr_algebra.model.robot import load_robot
 
     return load_robot(ROOT / "examples" / "seed000_test1.toml")
 
@@ -74,7 +74,7 @@ def test1():
 def test_dgp_endpoints_certified_and_accounted(test1):
     """Seed 000 Test 1, taut sets {1,2} and {1,2,3}: every regular endpoint is a certified distinct root, the
     certified real ones are the float count of real ones, and the subproblem is complete; JSON carries it."""
-    from cdpr_algebra.dgp import solve_taut_set
+    from cdpr_algebra.dgp.solve import solve_taut_set
 
     for cables in [(0, 1), (0, 1, 2)]:
         sub, _ = solve_taut_set(test1, test1.lengths, cables, certify=False)
@@ -88,7 +88,7 @@ def test_dgp_endpoints_certified_and_accounted(test1):
 
 def test_dgp_duplicate_endpoint_is_not_complete(test1):
     """An endpoint reported twice (as a merge would) makes the boxes meet: not certified, not complete."""
-    from cdpr_algebra import dgp as D
+    from cdpr_algebra.dgp import solve as D
 
     sub, sols, Z = D._solve_taut_set(test1, test1.lengths, (0, 1, 2))
     Zdup = np.vstack([Z, Z[:1] * (1 + 1e-14)])
@@ -112,7 +112,7 @@ def test_ill_conditioned_roots_need_balls():
     are proven, real, in disjoint boxes that hold the exact roots."""
     from flint import arb
 
-    from cdpr_algebra.complex_krawczyk import certify_complex_root_balls
+    from cdpr_algebra.intervals.complex_krawczyk import certify_complex_root_balls
 
     c = 2.0 ** -60
 

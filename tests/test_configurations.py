@@ -16,10 +16,10 @@ import numpy as np
 import pytest
 
 from cdpr_algebra import Robot, load_robot
-from cdpr_algebra.cc_radii import (ED_DEGREE, MONOMIALS, _generic, cc_polynomials, cc_radii, cc_radii_many,
+from cdpr_algebra.cc.radii import (ED_DEGREE, MONOMIALS, _generic, cc_polynomials, cc_radii, cc_radii_many,
                                    distance_to_cubics, evaluate_cubic)
-from cdpr_algebra.configurations import configuration_tensions, valid_configurations
-from cdpr_algebra.errors import CdprInputError
+from cdpr_algebra.cc.configurations import configuration_tensions, valid_configurations
+from cdpr_algebra.model.errors import CdprInputError
 
 ROBOT = "examples/seed002_8cables.toml"
 
@@ -110,7 +110,7 @@ def test_fewer_than_six_cables_valid_only_where_consistent():
 
 
 def test_valid_configurations_at_a_turned_pose_match_plain_numpy(robot):
-    from cdpr_algebra.pose import matrix_from_angles
+    from cdpr_algebra.model.pose import matrix_from_angles
 
     R = matrix_from_angles(0.05, -0.03, 0.2)
     G = np.array([0.3, 0.4, 2.1])
@@ -233,7 +233,7 @@ def test_cc_radii_input_errors(robot):
 def test_radii_at_a_turned_pose(robot):
     """Constant orientation R != I: the nearest point of the limiting surface is where the CC stops being valid
     along the ray from the pose (tensions from np.linalg.solve at the turned platform)."""
-    from cdpr_algebra.pose import matrix_from_angles
+    from cdpr_algebra.model.pose import matrix_from_angles
 
     R = matrix_from_angles(0.03, -0.02, 0.1)
     G = np.array([0.2, 0.8, 2.0])

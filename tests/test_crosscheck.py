@@ -11,11 +11,11 @@ from dataclasses import fields, replace
 import numpy as np
 import pytest
 
-from cdpr_algebra import crosscheck as cc_mod
-from cdpr_algebra.cli import main
-from cdpr_algebra.crosscheck import CrosscheckResult, compare_taut_set, crosscheck_table, exit_status, pruning_proof
-from cdpr_algebra.dgp import prune, solve_taut_set
-from cdpr_algebra.robot import Robot, load_robot
+from cdpr_algebra.crosscheck import compare as cc_mod
+from cdpr_algebra.cli.main import main
+from cdpr_algebra.crosscheck.compare import CrosscheckResult, compare_taut_set, crosscheck_table, exit_status, pruning_proof
+from cdpr_algebra.dgp.solve import prune, solve_taut_set
+from cdpr_algebra.model.robot import Robot, load_robot
 
 ROBOT = "examples/seed000_test1.toml"
 
@@ -172,7 +172,7 @@ def test_cli_exit_status_and_json(monkeypatch, capsys, boundary_case):
 def test_comparison_reuses_a_dgp_run(test1):
     """A comparison built on the subproblem of an earlier whole-robot DGP (``homotopy_result``, taken with
     ``DGPResult.taut_set``) says what a comparison that runs the homotopy itself says, on every taut set."""
-    from cdpr_algebra.dgp import dgp, lengths_and_taut_sets
+    from cdpr_algebra.dgp.solve import dgp, lengths_and_taut_sets
 
     res = dgp(test1)
     rho, sets = lengths_and_taut_sets(test1, None, 6)

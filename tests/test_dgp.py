@@ -7,8 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cdpr_algebra.dgp import available_m, dgp, prune
-from cdpr_algebra.robot import Robot, load_robot
+from cdpr_algebra.dgp.solve import available_m, dgp, prune
+from cdpr_algebra.model.robot import Robot, load_robot
 from equilibria import hang_platform
 from accounting import expected_complete
 
@@ -26,8 +26,8 @@ def test_stored_generic_sets(m):
     agrees in size."""
     import hashlib
 
-    from cdpr_algebra.dgp import FastTautSystem, generic_path
-    from cdpr_algebra.dgp_equations import taut_family
+    from cdpr_algebra.dgp.solve import FastTautSystem, generic_path
+    from cdpr_algebra.model.taut_equations import taut_family
     from cdpr_algebra.homotopy.monodromy import load_instance
 
     if not generic_path(m).exists():
@@ -205,7 +205,7 @@ def test_pruning_reports_reason():
 
 
 def test_cli_json_contract(tmp_path, capsys):
-    from cdpr_algebra.cli import main
+    from cdpr_algebra.cli.main import main
 
     robot, p, R, tensions = equilibrium_robot(2, 0, 5)
     path = tmp_path / "two.json"
@@ -251,7 +251,7 @@ def test_cli_json_contract(tmp_path, capsys):
 
 @pytest.mark.parametrize("m", [2, 3])
 def test_fast_evaluators_match_the_family(m):
-    from cdpr_algebra.dgp import fast_family
+    from cdpr_algebra.dgp.solve import fast_family
 
     fs = fast_family(m)
     rng = np.random.default_rng(m)

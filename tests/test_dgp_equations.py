@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.dgp_equations import decode, encode, taut_family, taut_parameters
-from cdpr_algebra.pose import matrix_from_angles
+from cdpr_algebra.model.taut_equations import decode, encode, taut_family, taut_parameters
+from cdpr_algebra.model.pose import matrix_from_angles
 
 
 @pytest.mark.parametrize("m", [2, 3, 4, 5, 6])

@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from cdpr_algebra.dgp import _generic, fast_family
-from cdpr_algebra.dgp_equations import taut_family
-from cdpr_algebra.dgp_kernels import taut_fj, taut_fjt
+from cdpr_algebra.dgp.solve import _generic, fast_family
+from cdpr_algebra.model.taut_equations import taut_family
+from cdpr_algebra.dgp.kernels import taut_fj, taut_fjt
 from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
 from cdpr_algebra.homotopy.tracker import TrackerOptions, track_segment
 
@@ -72,7 +72,7 @@ def test_compiled_tracker_equals_numpy_tracker(m, gamma):
 
 @pytest.mark.parametrize("m", [2, 4, 6])
 def test_structured_solve_equals_dense(m):
-    from cdpr_algebra.dgp_kernels import taut_apply, taut_factor
+    from cdpr_algebra.dgp.kernels import taut_apply, taut_factor
     from cdpr_algebra.homotopy.compiled import dense_apply, dense_factor, solve_with
 
     fam = taut_family(m)

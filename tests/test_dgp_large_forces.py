@@ -9,7 +9,7 @@ is never dropped silently because it is large; and where the paths all finish, i
 import numpy as np
 import pytest
 
-from cdpr_algebra.dgp import solve_taut_set
+from cdpr_algebra.dgp.solve import solve_taut_set
 from large_forces import large_force_robot
 
 CASES = [(3, 1e2), (3, 1e4), (3, 1e6), (6, 1e2), (6, 1e4), (6, 1e6),

@@ -3,8 +3,8 @@
 import numpy as np
 
 from cdpr_algebra import Robot, load_robot
-from cdpr_algebra.dgp_one_cable import _about, one_cable_equilibria
-from cdpr_algebra.statics import equilibrium_tensions
+from cdpr_algebra.dgp.one_cable import _about, one_cable_equilibria
+from cdpr_algebra.model.statics import equilibrium_tensions
 
 
 def _robot(lengths):

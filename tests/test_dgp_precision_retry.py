@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 import cdpr_algebra.homotopy.endgame as eg
-from cdpr_algebra.dgp import _generic, default_options, lengths_and_taut_sets, solve_taut_set
+from cdpr_algebra.dgp.solve import _generic, default_options, lengths_and_taut_sets, solve_taut_set
 from cdpr_algebra.homotopy.results import STEP_TOO_SMALL
-from cdpr_algebra.robot import load_robot
+from cdpr_algebra.model.robot import load_robot
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -11,11 +11,11 @@
 import numpy as np
 import pytest
 
-from cdpr_algebra.dgp import dgp
-from cdpr_algebra.igp_orientation import igp_orientation
-from cdpr_algebra.igp_position import igp_position
-from cdpr_algebra.pose import matrix_from_angles
-from cdpr_algebra.robot import Robot
+from cdpr_algebra.dgp.solve import dgp
+from cdpr_algebra.igp.orientation import igp_orientation
+from cdpr_algebra.igp.position import igp_position
+from cdpr_algebra.model.pose import matrix_from_angles
+from cdpr_algebra.model.robot import Robot
 from equilibria import hang_platform
 from accounting import expected_complete
 

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cdpr_algebra.dgp import available_m
+from cdpr_algebra.dgp.solve import available_m
 from accounting import expected_complete
 from shared_runs import dgp_run
 

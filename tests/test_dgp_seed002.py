@@ -10,9 +10,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cdpr_algebra.configurations import configuration_tensions
-from cdpr_algebra.dgp import dgp
-from cdpr_algebra.robot import load_robot
+from cdpr_algebra.cc.configurations import configuration_tensions
+from cdpr_algebra.dgp.solve import dgp
+from cdpr_algebra.model.robot import load_robot
 from accounting import expected_complete
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
@@ -60,7 +60,7 @@ def test_seed002_pose_012_with_its_four_valid_configurations(result):
 
 @pytest.mark.slow
 def test_seed002_table_lists_the_alternative_taut_sets(result):
-    from cdpr_algebra.dgp import dgp_table
+    from cdpr_algebra.dgp.solve import dgp_table
 
     table = dgp_table(result, 8)
     assert table.count("is also an equilibrium with taut cables") == sum(len(s.alternatives) for s in result.solutions) >= 3

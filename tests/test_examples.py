@@ -49,7 +49,7 @@ HALF_UNIT = 5e-4  # half a unit of the 3rd printed decimal
 
 
 # ----------------------------------------------------------------------------------------------------------------
-# Plain-numpy kinematics (independent of cdpr_algebra.pose)
+# Plain-numpy kinematics (independent of cdpr_algebra.model.pose)
 
 
 def rot_fixed_xyz(phi_x, phi_y, phi_z):

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from cdpr_algebra.dgp import available_m, fast_family, generic_path
+from cdpr_algebra.dgp.solve import available_m, fast_family, generic_path
 from cdpr_algebra.homotopy import PolynomialSystem, SolveOptions, TrackerOptions
 from cdpr_algebra.homotopy.monodromy import load_instance, monodromy_solve
 from cdpr_algebra.homotopy.trace_test import (TracePencilSystem, TraceSliceSystem, TraceTestOptions, compute_trace,

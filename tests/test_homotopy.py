@@ -19,7 +19,7 @@ from cdpr_algebra.homotopy.families import (cyclic, dgp3_family, dgp3_parameters
                                             stewart_gough)
 from cdpr_algebra.homotopy.monodromy import (MonodromyOptions, load_instance, monodromy_solve, save_instance)
 from cdpr_algebra.homotopy.start_systems import random_gamma, total_degree
-from cdpr_algebra.robot import load_robot
+from cdpr_algebra.model.robot import load_robot
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = ROOT / "cdpr_algebra" / "data" / "dgp3_generic.json"
@@ -328,7 +328,7 @@ def test_stored_dgp_instance_matches_family(dgp):
 def test_numeric_homogenization_of_quadratic_systems_equals_the_symbolic_one():
     """HomogenizedQuadratic (y0^2 F(y/y0) from F at y, -y, 0) against the sympy-built homogenized system, at
     random complex points (y0 = 0 included) and parameters, for the DGP families with 2 and 4 taut cables."""
-    from cdpr_algebra.dgp import fast_family
+    from cdpr_algebra.dgp.solve import fast_family
     from cdpr_algebra.homotopy.projective import HomogenizedQuadratic, projectivize
 
     rng = np.random.default_rng(3)
@@ -347,7 +347,7 @@ def test_numeric_homogenization_of_quadratic_systems_equals_the_symbolic_one():
 def test_directional_parameter_derivatives_equal_the_full_parameter_jacobian():
     """evaluate_directional (central differences, exact for equations quadratic in the parameters) equals
     dF/dp . dp from the full parameter Jacobian, for the DGP family and its numeric homogenization."""
-    from cdpr_algebra.dgp import fast_family
+    from cdpr_algebra.dgp.solve import fast_family
     from cdpr_algebra.homotopy.projective import projectivize
 
     rng = np.random.default_rng(5)

@@ -5,9 +5,9 @@ import pytest
 import sympy as sp
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.igp_orientation import exact_solution, igp_orientation, p123, p467, _Problem
-from cdpr_algebra.pose import matrix_from_angles
-from cdpr_algebra.robot import Robot
+from cdpr_algebra.igp.orientation import exact_solution, igp_orientation, p123, p467, _Problem
+from cdpr_algebra.model.pose import matrix_from_angles
+from cdpr_algebra.model.robot import Robot
 
 x = sp.Symbol("x")
 

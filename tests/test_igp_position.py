@@ -26,16 +26,16 @@ import sympy as sp
 
 from cdpr_algebra.generated import dialytic as gd
 from cdpr_algebra.generated import quartics as gq
-from cdpr_algebra.igp_position import (
+from cdpr_algebra.igp.position import (
     E3,
     dialytic_determinant,
     dialytic_matrices_exact,
     igp_position,
     work_frame_data,
 )
-from cdpr_algebra.pose import matrix_from_euler_parameters, rot_x, rot_y, rot_z
-from cdpr_algebra.robot import Robot
-from cdpr_algebra.stability import hessian_class, reduced_hessian
+from cdpr_algebra.model.pose import matrix_from_euler_parameters, rot_x, rot_y, rot_z
+from cdpr_algebra.model.robot import Robot
+from cdpr_algebra.model.stability import hessian_class, reduced_hessian
 
 # ------------------------------------------------------------------------------------------ data
 T3 = dict(a2=[9, 10, 0], a3=[6, 8, 7], b=[[-7, 3, 2], [-5, 1, -1], [-5, -2, 0]], x=[7, 9, 1])
@@ -386,7 +386,7 @@ def test_half_turn_solutions_are_found(q):
     """Robots built so that a given half-turn (e0 = 0) is an equilibrium: it is found, as (0, ...)."""
     from scipy.linalg import null_space
 
-    from cdpr_algebra.pose import skew
+    from cdpr_algebra.model.pose import skew
 
     rng = np.random.default_rng(5)
     b = rng.uniform(-2, 2, (3, 3))

@@ -9,12 +9,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import cdpr_algebra.interval_boxes as ib
-from cdpr_algebra.interval_boxes import Interval, QuadraticSystem, inv_sqr, krawczyk, mr_matmul
-from cdpr_algebra.dgp import available_m
-from cdpr_algebra.interval_bp import build_model, solve_taut_set_interval
-from cdpr_algebra.pose import rotation_taking
-from cdpr_algebra.robot import Robot, load_robot
+import cdpr_algebra.intervals.arithmetic as ib
+from cdpr_algebra.intervals.arithmetic import Interval, QuadraticSystem, inv_sqr, krawczyk, mr_matmul
+from cdpr_algebra.dgp.solve import available_m
+from cdpr_algebra.bp.solver import build_model, solve_taut_set_interval
+from cdpr_algebra.model.pose import rotation_taking
+from cdpr_algebra.model.robot import Robot, load_robot
 from shared_runs import dgp_run
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -180,7 +180,7 @@ def test_model_equations_vanish_at_a_published_equilibrium_and_are_quadratic():
     robot = _test1()
     model = build_model(robot, robot.lengths, (0, 1, 2))
     row = TABLES["1"]["rows"][0]
-    from cdpr_algebra.pose import matrix_from_angles
+    from cdpr_algebra.model.pose import matrix_from_angles
 
     R = matrix_from_angles(*row["angles"])
     p = np.array(row["position"])
@@ -245,7 +245,7 @@ def test_two_cable_equilibrium_built_by_construction_is_found(seed):
 def test_one_cable_turning_angle_search_agrees_with_the_analytic_arcs():
     """m = 1: the interval search of the turning angle against :mod:`.dgp_one_cable` (analytic arcs) on random
     robots; both count the candidates G below / above the anchor that keep every other cable slack."""
-    from cdpr_algebra.dgp_one_cable import one_cable_equilibria
+    from cdpr_algebra.dgp.one_cable import one_cable_equilibria
 
     rng = np.random.default_rng(11)
     checked = 0
@@ -308,7 +308,7 @@ def test_seed000_test1_three_cables_reproduces_table1(test1_m3):
 
 @pytest.mark.slow
 def test_crosscheck_agrees_on_every_subproblem_of_test1(test1_m3):
-    from cdpr_algebra.crosscheck import compare_taut_set, crosscheck_table, CrosscheckResult
+    from cdpr_algebra.crosscheck.compare import compare_taut_set, crosscheck_table, CrosscheckResult
 
     robot, sub3 = test1_m3
     comps = [compare_taut_set(robot, robot.lengths, c) for c in [(0,), (1,), (2,), (0, 1), (0, 2), (1, 2)]]
@@ -324,9 +324,9 @@ def test_crosscheck_agrees_on_every_subproblem_of_test1(test1_m3):
 
 def test_crosscheck_reports_a_disagreement_with_its_solutions():
     """A homotopy solution the interval side does not have (and vice versa) is listed, and agree is False."""
-    from cdpr_algebra.crosscheck import _match
-    from cdpr_algebra.dgp import DGPSolution
-    from cdpr_algebra.interval_bp import IntervalSolution
+    from cdpr_algebra.crosscheck.compare import _match
+    from cdpr_algebra.dgp.solve import DGPSolution
+    from cdpr_algebra.bp.solver import IntervalSolution
 
     robot = _test1()
     R = np.eye(3)
@@ -339,7 +339,7 @@ def test_crosscheck_reports_a_disagreement_with_its_solutions():
 
 
 def test_cli_crosscheck_json_and_bad_input(capsys):
-    from cdpr_algebra.cli import main
+    from cdpr_algebra.cli.main import main
 
     code = main(["crosscheck", "examples/seed000_test1.toml", "--taut", "1", "3", "--json"])
     out = json.loads(capsys.readouterr().out)
@@ -376,8 +376,8 @@ def _crosscheck_all_agree(name):
     one, no undecided box; nothing disagrees, and a subproblem is only left 'not compared' because the homotopy
     is incomplete there (failed paths or uncertified endpoints; issue 15: counted, not hidden); returns (robot, interval subproblems, interval
     admissible count by m)."""
-    from cdpr_algebra.crosscheck import CrosscheckResult, compare_taut_set, crosscheck_table
-    from cdpr_algebra.dgp import lengths_and_taut_sets
+    from cdpr_algebra.crosscheck.compare import CrosscheckResult, compare_taut_set, crosscheck_table
+    from cdpr_algebra.dgp.solve import lengths_and_taut_sets
 
     robot, hom = dgp_run(name)  # the homotopy DGP of tests/test_dgp_seed000.py (same worker: xdist_group)
     rho, sets = lengths_and_taut_sets(robot, None, 6)
@@ -508,7 +508,7 @@ def test_compiled_exact_difference_encloses_and_is_a_point_when_exact():
 def _known_solution(model, robot, position, angles, tensions):
     """Core vector of the model for a pose, polished by Newton on the model's own equations (float, converged to
     ~1e-15: the exact equilibrium is within ~1e-13 of it), and the full box vector (secondary points, n, lam)."""
-    from cdpr_algebra.pose import matrix_from_angles
+    from cdpr_algebra.model.pose import matrix_from_angles
 
     R = matrix_from_angles(*angles)
     pts = {k: np.asarray(position) + R @ b for k, b in enumerate(robot.platform)}
@@ -549,11 +549,11 @@ def test_compiled_filter_and_taylor_operators_keep_a_known_equilibrium(case):
     """Boxes around an equilibrium (Tables 1-3 rows polished on the model's equations; for m = 2 a robot built
     around one): the compiled filter never empties them and the contracted boxes and the compiled second-order
     operator's X cap T(X) still hold it (both kernel orders; the vectorized filter as a reference)."""
-    import cdpr_algebra.interval_bp as bp
+    import cdpr_algebra.bp.solver as bp
 
     if case == "planar":
         robot, R, lam = _two_cable_robot(3)  # both tensions positive
-        from cdpr_algebra.pose import angles_from_matrix
+        from cdpr_algebra.model.pose import angles_from_matrix
 
         model = build_model(robot, robot.lengths, (0, 1))
         x, full = _known_solution(model, robot, np.zeros(3), angles_from_matrix(R), lam * robot.lengths)
@@ -594,7 +594,7 @@ def test_compiled_filter_is_at_least_as_tight_as_the_vectorized_one():
     """On a batch of boxes of a branch and prune of seed 000 Test 3 (5 taut cables), the compiled filter in the
     vectorized order (each projection applied at once instead of simultaneously) keeps no box that the vectorized
     filter empties, and its boxes lie in the vectorized filter's ones up to rounding."""
-    import cdpr_algebra.interval_bp as bp
+    import cdpr_algebra.bp.solver as bp
 
     robot = load_robot(ROOT / "examples" / "seed000_test3.toml")
     model = build_model(robot, robot.lengths, (0, 1, 2, 3, 4))
@@ -625,7 +625,7 @@ def test_compiled_filter_is_at_least_as_tight_as_the_vectorized_one():
 def test_compiled_and_vectorized_solvers_find_the_same_equilibria():
     """A 5-cable subproblem of seed 000 Test 2 (3 equilibria, two printed in Table 2) solved with the compiled and
     with the vectorized operators: the same proven equilibria, both searches complete."""
-    import cdpr_algebra.interval_bp as bp
+    import cdpr_algebra.bp.solver as bp
 
     robot = load_robot(ROOT / "examples" / "seed000_test2.toml")
     subs = {}

@@ -80,13 +80,13 @@ def test_tiny_step_budget_fails_paths_and_counts_add_up():
 
 @pytest.fixture(scope="module")
 def test1():
-    from cdpr_algebra.robot import load_robot
+    from cdpr_algebra.model.robot import load_robot
 
     return load_robot(ROOT / "examples" / "seed000_test1.toml")
 
 
 def test_dgp_subproblem_outcomes_add_up(test1):
-    from cdpr_algebra.dgp import dgp
+    from cdpr_algebra.dgp.solve import dgp
 
     res = dgp(test1, jobs=1, max_m=3, certify=False)
     for s in res.subproblems:
@@ -101,8 +101,8 @@ def test_dgp_subproblem_outcomes_add_up(test1):
 def test_forced_failures_make_the_dgp_incomplete_and_the_cli_exit_3(test1, tmp_path, capsys, monkeypatch):
     """A tiny step budget: the subproblems with m >= 2 report failed paths, complete false; `cdpr dgp` names them
     on stderr and exits 3 (JSON too)."""
-    import cdpr_algebra.dgp as dgp_mod
-    from cdpr_algebra.cli import INCOMPLETE, main
+    import cdpr_algebra.dgp.solve as dgp_mod
+    from cdpr_algebra.cli.main import INCOMPLETE, main
     from cdpr_algebra.homotopy.tracker import TrackerOptions
 
     base = dgp_mod.default_options()

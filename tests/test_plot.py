@@ -1,4 +1,4 @@
-"""Pictures (issue 7): ``cdpr_algebra.plot`` and ``cdpr plot``.
+"""Pictures (issue 7): ``cdpr_algebra.report.plot`` and ``cdpr plot``.
 
 The equilibria drawn are the published rows of seed 000 Tables 1-2 (tests/data/seed000_tables.json) made into
 DGPSolution records, so the figures are checked against independent data: one panel per row, cable i drawn from
@@ -15,11 +15,11 @@ import pytest
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
 from cdpr_algebra import CdprInputError, load_robot
-from cdpr_algebra.cli import main
-from cdpr_algebra.dgp import DGPSolution
-from cdpr_algebra.igp_orientation import igp_orientation
-from cdpr_algebra.plot import plot_equilibria, plot_igp_solutions, plot_radius_along_path
-from cdpr_algebra.robot import Robot
+from cdpr_algebra.cli.main import main
+from cdpr_algebra.dgp.solve import DGPSolution
+from cdpr_algebra.igp.orientation import igp_orientation
+from cdpr_algebra.report.plot import plot_equilibria, plot_igp_solutions, plot_radius_along_path
+from cdpr_algebra.model.robot import Robot
 
 ROOT = Path(__file__).resolve().parents[1]
 TABLES = json.loads((ROOT / "tests" / "data" / "seed000_tables.json").read_text())["tables"]

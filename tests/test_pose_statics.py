@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from cdpr_algebra.pose import (Pose, angles_from_matrix, euler_parameters_from_matrix, matrix_from_angles,
+from cdpr_algebra.model.pose import (Pose, angles_from_matrix, euler_parameters_from_matrix, matrix_from_angles,
                                matrix_from_euler_parameters, matrix_from_rodrigues, rodrigues_from_matrix)
-from cdpr_algebra.stability import hessian_class, reduced_hessian
-from cdpr_algebra.statics import equilibrium_tensions, wrench_matrix
+from cdpr_algebra.model.stability import hessian_class, reduced_hessian
+from cdpr_algebra.model.statics import equilibrium_tensions, wrench_matrix
 
 
 def test_fixed_axes_angles_match_scipy_extrinsic_xyz():
@@ -58,7 +58,7 @@ def test_pose_from_com():
 
 def test_wrench_matrix_change_of_pole():
     """M(P) = [[I, 0], [-skew(P), I]] M(O): a unimodular row operation, so every rank condition is pole-free."""
-    from cdpr_algebra.pose import skew
+    from cdpr_algebra.model.pose import skew
 
     rng = np.random.default_rng(3)
     A, B, G, d = rng.normal(size=(3, 3)), rng.normal(size=(3, 3)), rng.normal(size=3), np.array([0, 0, 1.0])

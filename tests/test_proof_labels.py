@@ -11,11 +11,11 @@ import numpy as np
 import pytest
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.cli import main
-from cdpr_algebra.igp_orientation import igp_orientation
-from cdpr_algebra.pose import matrix_from_angles
-from cdpr_algebra.stability import reduced_hessian
-from cdpr_algebra.tables import igp_table
+from cdpr_algebra.cli.main import main
+from cdpr_algebra.igp.orientation import igp_orientation
+from cdpr_algebra.model.pose import matrix_from_angles
+from cdpr_algebra.model.stability import reduced_hessian
+from cdpr_algebra.report.tables import igp_table
 
 ROBOT = "examples/seed004_table1.toml"
 
@@ -112,7 +112,7 @@ def test_cli_table_and_json_at_the_crossing(robot, crossing, capsys):
 def test_dgp_table_never_shows_an_unproven_class_beside_a_plain_yes():
     """Test 1's robot at lengths 1, 10, 25: two 1-cable equilibria (neutral about the cable: H_r singular, never
     proven) and two 2-cable ones.  A row whose certificate leaves H_r undecided says so in the certified column."""
-    from cdpr_algebra.dgp import dgp, dgp_table
+    from cdpr_algebra.dgp.solve import dgp, dgp_table
 
     robot = load_robot("examples/seed000_test1.toml")
     res = dgp(robot, [1.0, 10.0, 25.0], jobs=1)

@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from cdpr_algebra import CdprInputError, Robot, load_robot
-from cdpr_algebra.cli import main
+from cdpr_algebra.cli.main import main
 
 GOOD = {
     "name": "t",

@@ -13,9 +13,9 @@ import pytest
 from scipy.linalg import expm, null_space
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.igp_position import igp_position
-from cdpr_algebra.pose import skew
-from cdpr_algebra.stability import constraint_jacobian
+from cdpr_algebra.igp.position import igp_position
+from cdpr_algebra.model.pose import skew
+from cdpr_algebra.model.stability import constraint_jacobian
 
 
 def _fd_signature(robot, sol, h=1e-4):
@@ -73,7 +73,7 @@ def test_table3_classes_match_potential_energy():
 
 
 def test_table1_stable_by_potential_energy():
-    from cdpr_algebra.igp_orientation import igp_orientation
+    from cdpr_algebra.igp.orientation import igp_orientation
 
     robot = load_robot("examples/seed004_table1.toml")
     (s,) = igp_orientation(robot, np.eye(3)).solutions
@@ -84,7 +84,7 @@ def test_seed000_test3_two_cable_equilibria_by_potential_energy():
     """Seed 000 Test 3 (MARIONET-VR): the admissible equilibria with cables (2, 3) or (4, 5) taut.  Their reduced
     Hessian is indefinite, and the potential energy on the 4-dimensional constraint manifold agrees (it decreases
     along two directions): they are not stable, although Sec. 5.3 counts them among its 17 stable solutions."""
-    from cdpr_algebra.dgp import solve_taut_set
+    from cdpr_algebra.dgp.solve import solve_taut_set
 
     robot = load_robot("examples/seed000_test3.toml")
     rho = robot.lengths

@@ -18,7 +18,7 @@ tracker is compiled and cached once for every system): ``fj(x, p, F, J)`` (F and
 ``fjt(x, p, dp, F, J, Ht)`` (also Ht = dF/dp . dp), ``factor(J, A, piv) -> bool`` (LU factors of J in the
 workspace A; False when singular) and ``apply(J, A, piv, b, out)`` (out = J^{-1} b from them):
 :func:`dense_factor` / :func:`dense_apply`, or ones that use the system's structure.  A system offers them by a
-method ``compiled_kernels()`` (the DGP: :mod:`cdpr_algebra.dgp_kernels`).  Compiling sympy-generated
+method ``compiled_kernels()`` (the DGP: :mod:`cdpr_algebra.dgp.kernels`).  Compiling sympy-generated
 straight-line code with numba instead was measured at 15-30 s for the 3-cable DGP system (821 lines; 110 s
 for 6 cables), which is why the kernels are written by hand.
 

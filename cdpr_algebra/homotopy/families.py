@@ -122,7 +122,7 @@ def dgp3_family() -> PolynomialSystem:
 
 
 def dgp3_parameters(robot) -> np.ndarray:
-    """The 21 parameters of :func:`dgp3_family` for a 3-cable :class:`~cdpr_algebra.robot.Robot` with lengths."""
+    """The 21 parameters of :func:`dgp3_family` for a 3-cable :class:`~cdpr_algebra.model.robot.Robot` with lengths."""
     if robot.n != 3 or robot.lengths is None:
         raise ValueError("need a 3-cable robot with cable lengths")
     A = np.asarray(robot.base, dtype=float)

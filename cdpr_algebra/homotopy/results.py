@@ -23,7 +23,7 @@ from typing import Optional
 
 import numpy as np
 
-from ..jsonable import jsonable as _jsonable
+from cdpr_algebra.report.jsonable import jsonable as _jsonable
 
 SUCCESS = "success"
 SINGULAR = "singular"

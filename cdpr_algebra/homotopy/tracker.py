@@ -202,7 +202,7 @@ def track_paths(homotopy, start_solutions, options=None, seed=None):
     """Track every start solution of ``homotopy`` to t = 0, run the endgame and classify each path.
 
     ``options`` is a :class:`~.endgame.SolveOptions` (or None for its defaults). Returns a
-    :class:`~.results.TrackResult`. See :func:`.endgame.run_pipeline` for the pipeline.
+    :class:`.results.TrackResult`. See :func:`.endgame.run_pipeline` for the pipeline.
     """
     from .endgame import SolveOptions, run_pipeline
 

@@ -46,7 +46,7 @@ Real critical points are polished by Newton in real arithmetic.  With ``certify=
 proofs (``CCRadii.radius_certificate``):
 
 * **critical point** (:func:`certify_radius`): the cubic's coefficients enclosed by arb determinants, then the
-  Krawczyk test of :mod:`.intervals` on the Lagrange system: a true critical point of the true surface exists at a
+  Krawczyk test of :mod:`cdpr_algebra.intervals.balls` on the Lagrange system: a true critical point of the true surface exists at a
   distance in ``radius_enclosure`` -- so r_min <= its upper end;
 * **nearest** (:func:`prove_nearest`): the homotopy's minimum alone is a floating-point search (a failed or jumped
   path could hide a nearer point), so every one of the seven enclosed cubics is shown, by an interval branch and
@@ -67,7 +67,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .configurations import check_pose, parse_cables, wrench_columns
-from .jsonable import jsonable
+from cdpr_algebra.report.jsonable import jsonable
 
 __all__ = ["MONOMIALS", "CCPolynomials", "CCRadii", "cc_polynomials", "cc_radii",
            "cc_radii_many", "distance_to_cubics", "certify_radius", "arb_cubic", "evaluate_cubic"]
@@ -422,7 +422,7 @@ ACCEPT_UPDATE = 1e-9
 
 
 def _batch_tracker():
-    from .homotopy.tracker import TrackerOptions
+    from cdpr_algebra.homotopy.tracker import TrackerOptions
 
     return TrackerOptions(predictor_tol=1e-4)
 
@@ -443,8 +443,8 @@ def _track_batch(hom, X0, seed: int = 0, at_infinity=_chart_at_infinity, tracker
     remaining ones go through the engine's Cauchy endgame (``singular`` when finite).  Nonsingular endpoints of
     one instance that coincide (path jumping) are re-tracked with tightened steps.  ``at_infinity(z)`` flags
     chart points at infinity (a boolean per row)."""
-    from .homotopy.endgame import EndgameOptions, cauchy_endgame, duplicate_groups, refine
-    from .homotopy.tracker import TrackerOptions, track_segment
+    from cdpr_algebra.homotopy.endgame import EndgameOptions, cauchy_endgame, duplicate_groups, refine
+    from cdpr_algebra.homotopy.tracker import TrackerOptions, track_segment
 
     tr, eo = tracker or TrackerOptions(), EndgameOptions()
     te = eo.endgame_start
@@ -690,7 +690,7 @@ def cc_radii_many(robot, requests, scale: float | None = None, seed: int = 0, ce
         G, R = check_pose(robot, pos, rot)
         S = tuple(cables)
         if len(S) != 6:
-            from .errors import CdprInputError
+            from cdpr_algebra.model.errors import CdprInputError
 
             raise CdprInputError("cables", f"the radii are defined for 6-cable configurations, got {len(S)} cables")
         Gs.append(G)
@@ -809,7 +809,7 @@ def _lagrange_evaluators(c):
 
 
 def certify_radius(robot, position, rotation, cables, column, scale, point) -> dict:
-    """Interval certificate of a radius: Krawczyk (:func:`.intervals.krawczyk_certify`) on the Lagrange system of
+    """Interval certificate of a radius: Krawczyk (:func:`cdpr_algebra.intervals.balls.krawczyk_certify`) on the Lagrange system of
     the rigorously enclosed cubic (:func:`arb_cubic`) around the critical point ``point`` (world frame).
 
     Returns {"proven": bool, "radius_enclosure": [lo, hi] or None, "reason": str or None}: proven means there is
@@ -817,7 +817,7 @@ def certify_radius(robot, position, rotation, cables, column, scale, point) -> d
     distance to the pose lies in the enclosure.  (That no other point is nearer: :func:`prove_nearest`.)"""
     from flint import arb
 
-    from .intervals import krawczyk_certify, lower, upper
+    from cdpr_algebra.intervals.balls import krawczyk_certify, lower, upper
 
     cb = arb_cubic(robot, position, rotation, cables, column, scale)
     y = (np.asarray(point, dtype=float) - np.asarray(position, dtype=float)) / scale
@@ -853,7 +853,7 @@ class _Poly:
 
     @staticmethod
     def _add(a, b):
-        from .interval_boxes import down, up
+        from cdpr_algebra.intervals.arithmetic import down, up
 
         return (float(down(a[0] + b[0])), float(up(a[1] + b[1])))
 
@@ -862,7 +862,7 @@ class _Poly:
         return cls({e: (float(l), float(h)) for e, l, h in zip(MONOMIALS, lo, hi)})
 
     def deriv(self, v: int) -> "_Poly":
-        from .interval_boxes import down, up
+        from cdpr_algebra.intervals.arithmetic import down, up
 
         out = {}
         for e, (lo, hi) in self.terms.items():
@@ -902,7 +902,7 @@ _MONO = np.array(MONOMIALS)
 
 def _monomials(lo, hi):
     """Enclosures of the 20 monomials over n boxes (lo, hi of shape (n, 3)): an Interval of shape (n, 20)."""
-    from .interval_boxes import Interval
+    from cdpr_algebra.intervals.arithmetic import Interval
 
     n = len(lo)
     plo, phi = np.ones((n, 3, 4)), np.ones((n, 3, 4))
@@ -928,11 +928,11 @@ def exclude_critical_points(coef_lo, coef_hi, radius: float, max_boxes: int | No
     grad P(y*) != 0 the surface is smooth there and y* is parallel to grad P(y*) (Lagrange), otherwise y* is a
     singular point; either way y* is in C (and y* != 0 when P(0) != 0).  So C empty in the open ball means
     dist(0, {P = 0}) >= ``radius``.  Branch and bound over the cube [-radius, radius]^3 in outward-rounded interval
-    arithmetic (:mod:`.interval_boxes`; the four functions and their gradients as interval coefficient matrices on
-    the monomials, products by :func:`.interval_boxes.mr_matmul`): a box is discarded when it misses the open ball,
+    arithmetic (:mod:`cdpr_algebra.intervals.arithmetic`; the four functions and their gradients as interval coefficient matrices on
+    the monomials, products by :func:`cdpr_algebra.intervals.arithmetic.mr_matmul`): a box is discarded when it misses the open ball,
     or when the enclosure of P or of a component of y x grad P excludes 0 (each enclosure is the intersection of the
     natural and the mean-value forms); other boxes are bisected along their widest side."""
-    from .interval_boxes import Interval, _midrad, mr_matmul, up
+    from cdpr_algebra.intervals.arithmetic import Interval, _midrad, mr_matmul, up
 
     max_boxes = NEAREST_MAX_BOXES if max_boxes is None else max_boxes
     P = _Poly.from_bounds(coef_lo, coef_hi)
@@ -982,9 +982,9 @@ def prove_nearest(robot, position, rotation, cables, scale, radius, max_boxes: i
     {|M| = 0}) comes within ``radius`` (world units) of the pose: :func:`exclude_critical_points` on each rigorously
     enclosed cubic (:func:`arb_cubic`).  Returns {"proven", "lower_bound" (a double <= the proven radius), "boxes",
     "reason"}."""
-    from .intervals import lower, upper
+    from cdpr_algebra.intervals.balls import lower, upper
 
-    from .interval_boxes import down
+    from cdpr_algebra.intervals.arithmetic import down
 
     rs = float(radius) / float(scale)
     lower_bound = float(down(rs * float(scale)))

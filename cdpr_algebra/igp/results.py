@@ -6,11 +6,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .jsonable import jsonable as _jsonable
+from cdpr_algebra.report.jsonable import jsonable as _jsonable
 
-from .pose import angles_from_matrix, euler_parameters_from_matrix, matrix_from_euler_parameters
-from .stability import stability_classes
-from .statics import equilibrium_tensions
+from cdpr_algebra.model.pose import angles_from_matrix, euler_parameters_from_matrix, matrix_from_euler_parameters
+from cdpr_algebra.model.stability import stability_classes
+from cdpr_algebra.model.statics import equilibrium_tensions
 
 
 @dataclass(frozen=True)

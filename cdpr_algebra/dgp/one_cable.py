@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .pose import rotation_taking, skew
+from cdpr_algebra.model.pose import rotation_taking, skew
 
 TWO_PI = 2 * np.pi
 

@@ -58,13 +58,13 @@ import numpy as np
 import scipy.linalg
 import sympy as sp
 
-from .errors import CdprInputError
-from .generated import dialytic as _gd
-from .generated import quartics as _gq
-from .pose import euler_parameters_from_matrix, matrix_from_euler_parameters
-from .certify import with_certificates
+from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.generated import dialytic as _gd
+from cdpr_algebra.generated import quartics as _gq
+from cdpr_algebra.model.pose import euler_parameters_from_matrix, matrix_from_euler_parameters
+from cdpr_algebra.certify.equilibria import with_certificates
 from .results import IGPResult, make_solutions
-from .robot import Robot
+from cdpr_algebra.model.robot import Robot
 
 E3 = sp.Symbol("e3")
 
@@ -407,7 +407,7 @@ def _clusters(lam, tol=1e-6):
     np.fill_diagonal(near, False)
     if not near.any():
         return [[i] for i in range(n)]
-    from .homotopy.clusters import linked_groups
+    from cdpr_algebra.homotopy.clusters import linked_groups
 
     return linked_groups(n, *np.nonzero(np.triu(near)))
 
@@ -721,10 +721,10 @@ def igp_position(robot: Robot, com_position, *, include_complex: bool = True, fo
     Returns an :class:`IGPResult` (problem 'position') whose solutions come from :func:`make_solutions`, with
     ``euler_parameters`` (1, e1, e2, e3) or (0, e1, e2, e3) as found. Real solutions first. With
     ``include_complex=False`` only real solutions are returned (all 24 are still computed).  ``certify``: attach
-    the interval certificate of :mod:`.certify` to every real solution (``certified``, ``certificate``).
+    the interval certificate of :mod:`cdpr_algebra.certify.equilibria` to every real solution (``certified``, ``certificate``).
 
     The solutions' ``hessian`` is the floating-point class of H_r (an estimate); the class the certificate proves is
-    ``hessian_proven``, and the tables and JSON show that class or 'undecided' (:class:`.results.IGPSolution`).
+    ``hessian_proven``, and the tables and JSON show that class or 'undecided' (:class:`cdpr_algebra.igp.results.IGPSolution`).
     """
     t0 = time.perf_counter()
     G = _com_position(com_position)

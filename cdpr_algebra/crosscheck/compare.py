@@ -1,5 +1,5 @@
-"""Cross-check of the two DGP solvers (issue 8): homotopy continuation (:func:`.dgp.solve_taut_set`) against the
-interval branch and prune (:func:`.interval_bp.solve_taut_set_interval`), subproblem by subproblem.
+"""Cross-check of the two DGP solvers (issue 8): homotopy continuation (:func:`cdpr_algebra.dgp.solve_taut_set`) against the
+interval branch and prune (:func:`cdpr_algebra.bp.solver.solve_taut_set_interval`), subproblem by subproblem.
 
 For each set of taut cables: the homotopy's admissible count (real, tensions >= 0, other cables slack), the
 interval solver's count of proven admissible solutions, its undecided boxes, and every disagreement with the
@@ -29,7 +29,7 @@ satisfies the geometric constraints, hence no equilibrium exists.  :func:`prunin
 outward-rounded ball arithmetic (arb) on the robot's numbers; only then is the homotopy's 0 a proven, complete
 answer compared with the interval search's (which still runs: its answer must be complete and empty to agree).
 
-Boundary cases follow the homotopy's deduplication rule (:mod:`.dgp`): a solution with a zero tension belongs to
+Boundary cases follow the homotopy's deduplication rule (:mod:`cdpr_algebra.dgp.solve`): a solution with a zero tension belongs to
 the smaller taut set; the interval solver reports such a proven solution as undecided (its tension enclosure
 contains 0), so that subproblem is "not compared" with the undecided box listed, never silently agreed.
 """
@@ -43,9 +43,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .dgp import solve_each_taut_set
-from .interval_bp import BPOptions, solve_taut_set_interval
-from .jsonable import jsonable
+from cdpr_algebra.dgp.solve import solve_each_taut_set
+from cdpr_algebra.bp.solver import BPOptions, solve_taut_set_interval
+from cdpr_algebra.report.jsonable import jsonable
 
 __all__ = ["SubproblemComparison", "CrosscheckResult", "compare_taut_set", "crosscheck", "crosscheck_table",
            "pruning_proof", "exit_status", "MATCH_TOL"]
@@ -132,7 +132,7 @@ def exit_status(result: CrosscheckResult) -> int:
 
 
 def pruning_proof(robot, rho, cables) -> str | None:
-    """The pruning test of :func:`.dgp.prune` for the 0-based taut set ``cables``, re-checked in ball arithmetic
+    """The pruning test of :func:`cdpr_algebra.dgp.solve.prune` for the 0-based taut set ``cables``, re-checked in ball arithmetic
     (arb, outward rounded; the robot's doubles taken as exact): the reason when one of its inequalities is proven
     (no pose, hence no equilibrium), None otherwise (see the module docstring)."""
     from flint import arb
@@ -183,7 +183,7 @@ def _match(robot, taut, hsols, isols, tol=MATCH_TOL):
 
 
 def _homotopy(robot, rho, cables, seed):
-    from .dgp import solve_taut_set
+    from cdpr_algebra.dgp.solve import solve_taut_set
 
     kwargs = {"seed": seed}
     if "certify" in inspect.signature(solve_taut_set).parameters:
@@ -192,7 +192,7 @@ def _homotopy(robot, rho, cables, seed):
 
 
 def _incompleteness(hsub):
-    from .dgp import incompleteness
+    from cdpr_algebra.dgp.solve import incompleteness
 
     return incompleteness(hsub)
 
@@ -230,9 +230,9 @@ def _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only, hwhy=N
 def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed: int = 0,
                      interval_result=None, homotopy_result=None) -> SubproblemComparison:
     """Both solvers on the 0-based taut set ``cables`` (rho: all n lengths) and their comparison
-    (``interval_result``: an :class:`.interval_bp.IntervalSubproblem` already computed for this set;
+    (``interval_result``: an :class:`cdpr_algebra.bp.solver.IntervalSubproblem` already computed for this set;
     ``homotopy_result``: the pair (DGPSubproblem, its admissible DGPSolutions) of the homotopy DGP already
-    computed for this set at these lengths, e.g. taken from a :func:`.dgp.dgp` result)."""
+    computed for this set at these lengths, e.g. taken from a :func:`cdpr_algebra.dgp.solve.dgp` result)."""
     rho = np.asarray(rho, dtype=float)
     cables = tuple(sorted(cables))
     taut1 = tuple(c + 1 for c in cables)
@@ -287,7 +287,7 @@ def summary_line(result: CrosscheckResult) -> str:
 def crosscheck_table(result: CrosscheckResult) -> str:
     """One row per subproblem, then every disagreement with its solutions, every subproblem not compared with the
     reason (and its undecided boxes), and the summary line."""
-    from .tables import format_table
+    from cdpr_algebra.report.tables import format_table
 
     headers = ["taut", "homotopy", "interval", "undecided", "agree", "t_homotopy", "t_interval", "boxes"]
     rows = []

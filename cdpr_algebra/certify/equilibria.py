@@ -3,7 +3,7 @@ and the consequences proven over that box (tension signs, slack cables, pose, cl
 
 Square systems certified (all quadratic, world coordinates of the robot file; :func:`taut_system`):
 
-* **DGP, m = 2..6 taut cables**: exactly the equations of :mod:`.dgp_equations` (unknowns x = (p, u, v, w, lam),
+* **DGP, m = 2..6 taut cables**: exactly the equations of :mod:`cdpr_algebra.model.taut_equations` (unknowns x = (p, u, v, w, lam),
   R = [u v w], lam_i = tau_i / rho_i: rotation (6), cable lengths (m), force balance (3), moments about the world
   origin (3)).
 * **DGP, m = 1**: the equilibria form a circle (the platform turns freely about the cable, which lies along the
@@ -19,7 +19,7 @@ Square systems certified (all quadratic, world coordinates of the robot file; :f
   b_i' - g', g' = 0): rotation (6) and balance (6).  Rotation matrix entries instead of Euler parameters: every
   orientation, half-turns (e0 = 0) included, is a regular point of this chart, so no branch is special.
 
-Existence and uniqueness: Krawczyk test with epsilon-inflation (:func:`.intervals.krawczyk_certify`) in a box of
+Existence and uniqueness: Krawczyk test with epsilon-inflation (:func:`cdpr_algebra.intervals.balls.krawczyk_certify`) in a box of
 width <= 1e-9 relative to the scale of each unknown (L = robot.size for positions, 1 for rotation entries, Q / L
 for lam).  Over the certified box, in outward-rounded ball arithmetic (python-flint arb):
 
@@ -27,10 +27,10 @@ for lam).  Over the certified box, in outward-rounded ball arithmetic (python-fl
   'boundary' when the enclosure contains 0 (a tension zero within rounding is never reported as positive);
 * every slack cable j: |B_j - A_j| - rho_j enclosed, slack proven when its upper end is < 0;
 * pose: p and R enclosed;
-* class of H_r = N^T H N (seed 000 eqs. 28-30, :mod:`.stability`) from the bordered matrix
+* class of H_r = N^T H N (seed 000 eqs. 28-30, :mod:`cdpr_algebra.model.stability`) from the bordered matrix
   K = [[T H T, T J^T D], [D J T, 0]] (T = diag(1, 1, 1, 1/L, 1/L, 1/L), D = Q / L^2 I, positive scalings): when J
   has full row rank m, In(K) = In(H_r) + (m, m, 0) (N. Gould, Math. Programming 32, 1985), and a nonsingular K
-  forces full row rank.  The inertia of K is proven by :func:`.intervals.symmetric_inertia` (Gershgorin discs of V^T K V with V
+  forces full row rank.  The inertia of K is proven by :func:`cdpr_algebra.intervals.balls.symmetric_inertia` (Gershgorin discs of V^T K V with V
   the floating-point eigenvectors of mid K, Sylvester's law).  A proven inertia gives the class '>', '<' or '<>';
   a singular H_r ('>=', '<=', e.g. every m = 1 equilibrium, neutral about the cable) is 'undecided'.
 
@@ -44,9 +44,9 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from flint import arb
 
-from .dgp_equations import encode
-from .intervals import bounds, krawczyk_certify, sign, symmetric_inertia
-from .jsonable import jsonable
+from cdpr_algebra.model.taut_equations import encode
+from cdpr_algebra.intervals.balls import bounds, krawczyk_certify, sign, symmetric_inertia
+from cdpr_algebra.report.jsonable import jsonable
 
 BOX_RTOL = 1e-9  # max width of the certified box relative to the scale of each unknown
 
@@ -61,7 +61,7 @@ def _skew_rows(a):
 
 
 def taut_system(x, A, b, g, f, rho2=None, jacobian: bool = True):
-    """F(x) and dF/dx of :func:`.dgp_equations.taut_family` in plain arithmetic (floats, arb balls, ...).
+    """F(x) and dF/dx of :func:`cdpr_algebra.model.taut_equations.taut_family` in plain arithmetic (floats, arb balls, ...).
 
     x = (p, u, v, w, lam_1..lam_m); A, b: m points (world exit points, platform anchors), g: g', f: Q d;
     ``rho2``: the m squared lengths, or None to leave the length equations out (IGP).  Rows: u.u - 1, v.v - 1,
@@ -439,13 +439,13 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
     ``groups``: list of (0-based taut ``cables``, Z (N, 12 + m) complex roots of their taut system in world
     coordinates (p, u, v, w, lam)); ``lengths``: all n (None: the robot's).  One vectorized certification over
     every root of every group (each row with the constants of its own taut set).  Returns, per group,
-    (:class:`.complex_krawczyk.ComplexRootBoxes`, overlapping (N,) bool): each root proven unique in its box of
+    (:class:`cdpr_algebra.intervals.complex_krawczyk.ComplexRootBoxes`, overlapping (N,) bool): each root proven unique in its box of
     C^(12+m) (real or non-real proven where decidable), and the proven boxes meeting another proven box of the
     same group (those roots are not proven distinct).  Constants: the robot's floats exactly, Q d and rho_i^2
     enclosed.  ``balls`` (one bool per group, default all True): retry the roots of that group that double
     precision could not certify in ball arithmetic."""
-    from .complex_krawczyk import ComplexRootBoxes, certify_complex_roots, overlapping
-    from .interval_boxes import Interval
+    from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes, certify_complex_roots, overlapping
+    from cdpr_algebra.intervals.arithmetic import Interval
 
     groups = [(list(map(int, c)), np.asarray(Z, dtype=complex).reshape(len(Z), 12 + len(c))) for c, Z in groups]
     if not groups:
@@ -498,11 +498,11 @@ BALL_PREC = 256  # bits
 
 def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry):
     """The roots that double-precision interval arithmetic could not certify, tested again in complex ball
-    arithmetic at ``BALL_PREC`` bits (:func:`.complex_krawczyk.certify_complex_root_balls`; only rows with
+    arithmetic at ``BALL_PREC`` bits (:func:`cdpr_algebra.intervals.complex_krawczyk.certify_complex_root_balls`; only rows with
     ``retry``, at most ``BALL_RETRY_MAX`` of them, the others keep their reason)."""
     from flint import acb, arb, ctx
 
-    from .complex_krawczyk import ComplexRootBoxes, certify_complex_root_balls
+    from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes, certify_complex_root_balls
 
     todo = [k for k in np.flatnonzero(~boxes.proven & retry) if np.all(np.isfinite(Z[k]))]
     proven, lo, hi = boxes.proven.copy(), boxes.lo.copy(), boxes.hi.copy()
@@ -586,7 +586,7 @@ def certify_igp_position(robot, com_position, rotation, tensions, lengths, box_r
 
 
 def certify_igp_solution(robot, solution, problem: str, box_rtol: float = BOX_RTOL) -> Certificate | None:
-    """Certificate of a real :class:`.results.IGPSolution` of the IGP ``problem`` ('orientation' or 'position');
+    """Certificate of a real :class:`cdpr_algebra.igp.results.IGPSolution` of the IGP ``problem`` ('orientation' or 'position');
     None for a complex solution."""
     if not solution.real:
         return None

@@ -20,12 +20,12 @@ import time
 import numpy as np
 import sympy as sp
 
-from .errors import CdprInputError
-from .generated import igp_orientation as gen
-from .certify import with_certificates
+from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.generated import igp_orientation as gen
+from cdpr_algebra.certify.equilibria import with_certificates
 from .results import IGPResult, SolutionSet, make_solution
-from .pose import rotation_taking
-from .robot import Robot
+from cdpr_algebra.model.pose import rotation_taking
+from cdpr_algebra.model.robot import Robot
 
 # Directions (cos, sin) along which a coordinate of G is computed; rational so exact mode stays exact.
 _DIRECTIONS = [(1, 0), (0, 1), (sp.Rational(3, 5), sp.Rational(4, 5)), (sp.Rational(-4, 5), sp.Rational(3, 5)),
@@ -395,16 +395,16 @@ def igp_orientation(robot: Robot, rotation, *, exact: bool = False, certify: boo
     set of Appendix A (line, curve, conic, crane) or an empty set.  ``exact=True`` reads the robot's numbers as
     exact rationals (see :func:`_rational`) and needs an exact rotation (sympy entries).  A numeric solution is
     Newton-polished and verified by its equilibrium residual; the message says how it was checked.
-    ``certify``: attach the interval certificate of :mod:`.certify` to the solution (``certified``, ``certificate``).
+    ``certify``: attach the interval certificate of :mod:`cdpr_algebra.certify.equilibria` to the solution (``certified``, ``certificate``).
 
     The solutions' ``hessian`` is the floating-point class of H_r (an estimate); the class the certificate proves is
-    ``hessian_proven``, and the tables and JSON show that class or 'undecided' (:class:`.results.IGPSolution`).
+    ``hessian_proven``, and the tables and JSON show that class or 'undecided' (:class:`cdpr_algebra.igp.results.IGPSolution`).
     """
     t0 = time.perf_counter()
     if robot.n != 3:
         raise CdprInputError("base", f"the IGP with assigned orientation needs exactly 3 cables, the robot has {robot.n}")
     if not exact:
-        from .pose import check_rotation
+        from cdpr_algebra.model.pose import check_rotation
         rotation = check_rotation(rotation)
     prob = _Problem(robot, rotation, exact)
     tol = 1e-10

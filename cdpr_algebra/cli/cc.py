@@ -6,14 +6,14 @@
     cdpr cc ROBOT --surface EX EY EZ --range U0 U1 --range V0 V1 [--angles ..] [--configuration ..] [--json]
 
 At a pose (position of the centre of mass G, orientation R = Rz Ry Rx of ``--angles``): every valid cable
-configuration (:mod:`.configurations`), and for those with 6 cables the radii of the first criterion
-(:mod:`.cc_radii`: r_min's critical point certified by Krawczyk and its nearest-ness proven by interval exclusion,
-each reported separately in ``radius_certificate``), the second criterion within ``--ball R`` (:mod:`.cc_safety`:
+configuration (:mod:`cdpr_algebra.cc.configurations`), and for those with 6 cables the radii of the first criterion
+(:mod:`cdpr_algebra.cc.radii`: r_min's critical point certified by Krawczyk and its nearest-ness proven by interval exclusion,
+each reported separately in ``radius_certificate``), the second criterion within ``--ball R`` (:mod:`cdpr_algebra.cc.safety`:
 ``safe_nearby`` true only from the interval exclusion proof, false only with a verified counterexample, null when
 only the homotopy search ran; ``second_criterion.method`` and ``status`` say which) and the uncertainty
 criterion for +-DA on the exit points, +-DB on the platform anchors and +-DRHO on the cable lengths
-(:mod:`.cc_uncertainty`).  Along a trajectory (expressions of t) or over a surface (of u, v): the 6-cable
-configurations valid over the whole path with their index (:mod:`.cc_paths`).  An expression that starts with '-'
+(:mod:`cdpr_algebra.cc.uncertainty`).  Along a trajectory (expressions of t) or over a surface (of u, v): the 6-cable
+configurations valid over the whole path with their index (:mod:`cdpr_algebra.cc.paths`).  An expression that starts with '-'
 must be written with a leading space or in parentheses (argparse would take it for an option).
 
 JSON: ``{"robot", "mode", "position", "angles", "configurations": [{"cables", "tensions", "valid", "radii":
@@ -33,12 +33,12 @@ from dataclasses import replace
 
 import numpy as np
 
-from .errors import CdprInputError
-from .jsonable import jsonable
+from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.report.jsonable import jsonable
 
 
 def add_parser(subparsers) -> None:
-    from .cli import _finite
+    from .main import _finite
 
     p = subparsers.add_parser("cc", help="cable configurations of a suspended robot with > 6 cables (seed 002)")
     p.add_argument("robot", help="robot file (.json or .toml)")
@@ -61,7 +61,7 @@ def add_parser(subparsers) -> None:
 
 
 def _rotation(args) -> tuple[np.ndarray, list]:
-    from .pose import matrix_from_angles
+    from cdpr_algebra.model.pose import matrix_from_angles
 
     angles = [0.0, 0.0, 0.0] if args.angles is None else list(args.angles)
     rad = np.radians(angles) if args.degrees else np.array(angles)
@@ -105,8 +105,8 @@ def _entry(cc, radii=None, safety=None, unc=None) -> dict:
 
 
 def _pose(args, robot, R) -> tuple[list, dict]:
-    from .cc_radii import cc_radii_many
-    from .configurations import configuration_tensions, parse_cables, rank_configurations, valid_configurations
+    from cdpr_algebra.cc.radii import cc_radii_many
+    from cdpr_algebra.cc.configurations import configuration_tensions, parse_cables, rank_configurations, valid_configurations
 
     G = np.array(args.position, dtype=float)
     if args.ball is not None and not args.ball > 0:
@@ -124,13 +124,13 @@ def _pose(args, robot, R) -> tuple[list, dict]:
     ccs = rank_configurations(ccs) if numbers is None else ccs
     safety, unc = {}, {}
     if args.ball is not None:
-        from .cc_safety import safety as second
+        from cdpr_algebra.cc.safety import safety as second
 
         for c in six:
             if c.valid:
                 safety[c.cables] = second(robot, G, c.cables, R, args.ball)
     if args.uncertainty is not None:
-        from .cc_uncertainty import uncertainty_check
+        from cdpr_algebra.cc.uncertainty import uncertainty_check
 
         dA, dB, drho = args.uncertainty
         for c in six:
@@ -141,7 +141,7 @@ def _pose(args, robot, R) -> tuple[list, dict]:
 
 
 def _path(args, robot, R) -> tuple[list, dict]:
-    from .cc_paths import parse_path, path_configurations
+    from cdpr_algebra.cc.paths import parse_path, path_configurations
 
     surface = args.surface is not None
     option = "--surface" if surface else "--trajectory"
@@ -192,7 +192,7 @@ def _safe_cell(e) -> str:
 
 
 def _table(entries, head) -> str:
-    from .tables import format_table
+    from cdpr_algebra.report.tables import format_table
 
     def fmt(v):
         return "-" if v is None else ("yes" if v is True else "no" if v is False else str(v))
@@ -235,7 +235,7 @@ def _table(entries, head) -> str:
 
 
 def run(args) -> int:
-    from .robot import load_robot
+    from cdpr_algebra.model.robot import load_robot
 
     t0 = time.perf_counter()
     robot = load_robot(args.robot)

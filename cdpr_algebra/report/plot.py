@@ -1,7 +1,7 @@
 """Pictures of equilibria with matplotlib (issue 7).
 
-* :func:`plot_equilibria`: DGP solutions (:class:`.dgp.DGPSolution`), one 3-D panel per equilibrium;
-* :func:`plot_igp_solutions`: IGP results (:class:`.results.IGPResult`), one panel per solution, or the
+* :func:`plot_equilibria`: DGP solutions (:class:`cdpr_algebra.dgp.solve.DGPSolution`), one 3-D panel per equilibrium;
+* :func:`plot_igp_solutions`: IGP results (:class:`cdpr_algebra.igp.results.IGPResult`), one panel per solution, or the
   special solution set of seed 004 App. A;
 * :func:`plot_radius_along_path`: a ranking of cable configurations along a trajectory (radius against
   the path parameter);
@@ -31,7 +31,7 @@ from matplotlib.colors import LinearSegmentedColormap, Normalize, TwoSlopeNorm
 from matplotlib.figure import Figure
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-from .errors import CdprInputError
+from cdpr_algebra.model.errors import CdprInputError
 
 __all__ = ["draw_configuration", "plot_equilibria", "plot_igp_solutions", "plot_radius_along_path",
            "set_equal_axes", "tension_colours"]
@@ -157,7 +157,7 @@ def _colour_bar(fig, axes, norm, cmap, label="cable tension") -> None:
 # ----------------------------------------------------------------------------------------- DGP
 def plot_equilibria(robot, solutions, *, ncols: int | None = None, title: str | None = None,
                     max_panels: int | None = None) -> Figure:
-    """One 3-D panel per equilibrium of the DGP (:class:`.dgp.DGPSolution` records, e.g. ``dgp(...).solutions``).
+    """One 3-D panel per equilibrium of the DGP (:class:`cdpr_algebra.dgp.solve.DGPSolution` records, e.g. ``dgp(...).solutions``).
 
     Panel k is titled "#k taut [i, j, ...]" and its stability ("stable" when H_r is '>', else the H_r class);
     one colour bar for the tensions of all panels.  With no solution the figure has one panel with the base.
@@ -199,11 +199,11 @@ _SELECT = {
 
 
 def plot_igp_solutions(robot, result, *, select="real", ncols: int | None = None, title: str | None = None) -> Figure:
-    """One 3-D panel per solution of an IGP (:class:`.results.IGPResult` of :func:`.igp_orientation.igp_orientation`
-    or :func:`.igp_position.igp_position`).
+    """One 3-D panel per solution of an IGP (:class:`cdpr_algebra.igp.results.IGPResult` of :func:`cdpr_algebra.igp.orientation.igp_orientation`
+    or :func:`cdpr_algebra.igp.position.igp_position`).
 
     ``select``: 'real' (default), 'admissible', 'stable', 'admissible_or_stable' or a predicate on
-    :class:`.results.IGPSolution`.  Panels are numbered by the solution's 1-based index in ``result.solutions``
+    :class:`cdpr_algebra.igp.results.IGPSolution`.  Panels are numbered by the solution's 1-based index in ``result.solutions``
     and say whether every tension is >= 0 and the H_r class.  All three cables have the lengths the IGP
     computed, so all are drawn solid, coloured by tension (a diverging map when some tension is negative).
     When the result is a special set of seed 004 App. A instead (``result.solution_set``), one panel shows the

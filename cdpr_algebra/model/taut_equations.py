@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import sympy as sp
 
-from .homotopy.systems import PolynomialSystem
+from cdpr_algebra.homotopy.systems import PolynomialSystem
 
 _FAMILIES: dict[int, PolynomialSystem] = {}
 

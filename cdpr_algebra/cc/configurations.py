@@ -13,7 +13,7 @@ equilibria of fewer cables.
 
 The ``position`` of a pose is that of the centre of mass G (seed 002's C; the ``cdpr igp`` convention); the
 orientation is a rotation matrix R (B_i = G + R (b_i' - g')).  Ranking: by the robustness index r_min when it has
-been computed (larger first, :mod:`.cc_radii`), then by the largest tension (smaller first).
+been computed (larger first, :mod:`cdpr_algebra.cc.radii`), then by the largest tension (smaller first).
 """
 
 from __future__ import annotations
@@ -23,9 +23,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .errors import CdprInputError
-from .jsonable import jsonable
-from .statics import cross
+from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.report.jsonable import jsonable
+from cdpr_algebra.model.statics import cross
 
 __all__ = ["CableConfiguration", "check_pose", "wrench_columns", "configuration_tensions", "valid_configurations",
            "rank_configurations", "parse_cables"]
@@ -44,7 +44,7 @@ def check_pose(robot, position, rotation=None) -> tuple[np.ndarray, np.ndarray]:
     if rotation is None:
         R = np.eye(3)
     else:
-        from .pose import check_rotation
+        from cdpr_algebra.model.pose import check_rotation
 
         R = check_rotation(rotation, "rotation")
     return G, R
@@ -88,7 +88,7 @@ class CableConfiguration:
     """A set of taut cables at a pose with its tensions (cables 0-based here, 1-based in ``to_dict``).
 
     ``residual`` is |M_S lam - rhs| / Q (0 up to rounding for 6 cables); ``valid`` says every tension is > 0
-    and the statics is consistent.  ``rmin`` / ``radii`` are filled by :func:`.cc_radii.attach_radii`.
+    and the statics is consistent.  ``rmin`` / ``radii`` are filled by :func:`cdpr_algebra.cc.radii.attach_radii`.
     """
 
     cables: tuple

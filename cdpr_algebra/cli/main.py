@@ -22,7 +22,7 @@ import sys
 
 import numpy as np
 
-from .errors import CdprInputError
+from cdpr_algebra.model.errors import CdprInputError
 
 INCOMPLETE = 3  # exit status: a result not proven complete (failed paths, uncertified endpoints), said on stderr
 
@@ -69,13 +69,13 @@ def build_parser() -> argparse.ArgumentParser:
                      help="track up to 4 paths per subproblem that fail in double precision again in arbitrary "
                           "precision (slow: seconds to minutes per path)")
     dgp.add_argument("--json", action="store_true", help="print JSON instead of a table")
-    from . import cli_plot
+    from . import plot as cli_plot
 
     cli_plot.add_parser(sub)
-    from . import cli_cc
+    from . import cc as cli_cc
 
     cli_cc.add_parser(sub)
-    from . import cli_crosscheck
+    from . import crosscheck as cli_crosscheck
 
     cli_crosscheck.add_parser(sub)
     return p
@@ -100,13 +100,13 @@ def _exact_rotation(angles_deg):
 
 
 def _run_igp(args) -> int:
-    from .pose import matrix_from_angles
-    from .robot import load_robot
-    from .tables import igp_table
+    from cdpr_algebra.model.pose import matrix_from_angles
+    from cdpr_algebra.model.robot import load_robot
+    from cdpr_algebra.report.tables import igp_table
 
     robot = load_robot(args.robot)
     if args.orientation is not None:
-        from .igp_orientation import igp_orientation
+        from cdpr_algebra.igp.orientation import igp_orientation
 
         angles = np.array(args.orientation)
         if args.exact:
@@ -118,7 +118,7 @@ def _run_igp(args) -> int:
     else:
         if args.exact:
             raise CdprInputError("--exact", "exact mode of the CLI is for the IGP with assigned orientation")
-        from .igp_position import igp_position
+        from cdpr_algebra.igp.position import igp_position
 
         result = igp_position(robot, np.array(args.position))
     if args.json:
@@ -143,8 +143,8 @@ def _dgp_lengths(args, robot) -> np.ndarray:
 
 
 def _run_dgp(args) -> int:
-    from .dgp import dgp, dgp_table, incompleteness
-    from .robot import load_robot
+    from cdpr_algebra.dgp.solve import dgp, dgp_table, incompleteness
+    from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(args.robot)
     lengths = _dgp_lengths(args, robot)
@@ -162,7 +162,7 @@ def _run_dgp(args) -> int:
     if args.mpmath_retry:
         from dataclasses import replace
 
-        from .dgp import default_options
+        from cdpr_algebra.dgp.solve import default_options
 
         options = replace(default_options(), retry_mpmath=True)
     result = dgp(robot, lengths, jobs=args.jobs, progress=progress, options=options)
@@ -191,15 +191,15 @@ def main(argv=None) -> int:
         if args.command == "dgp":
             return _run_dgp(args)
         if args.command == "plot":
-            from . import cli_plot
+            from . import plot as cli_plot
 
             return cli_plot.run(args)
         if args.command == "cc":
-            from . import cli_cc
+            from . import cc as cli_cc
 
             return cli_cc.run(args)
         if args.command == "crosscheck":
-            from . import cli_crosscheck
+            from . import crosscheck as cli_crosscheck
 
             return cli_crosscheck.run(args)
     except CdprInputError as err:

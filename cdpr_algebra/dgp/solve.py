@@ -3,17 +3,17 @@ lengths, over every set of taut cables with m = 1 .. min(n, 6) cables.
 
 Per taut set S (a *subproblem*, cables 1-based in reports):
 
-* **m = 1**: analytic (:mod:`.dgp_one_cable`, seed 000 Sec. 3.2); the platform may still turn about the
+* **m = 1**: analytic (:mod:`cdpr_algebra.dgp.one_cable`, seed 000 Sec. 3.2); the platform may still turn about the
   cable, the reported pose is the middle of the widest feasible arc.
 * **m = 2 .. 6**: parameter homotopy (:func:`.homotopy.solve.solve_parameter_homotopy`, which re-tracks
-  failed or coinciding paths itself) from the stored generic solution set of :func:`.dgp_equations.taut_family`
+  failed or coinciding paths itself) from the stored generic solution set of :func:`cdpr_algebra.model.taut_equations.taut_family`
   (``cdpr_algebra/data/dgp_generic_m{m}.json``, made by ``derivations/solve_generic_dgp.py``) to the robot's
   parameters.  Subproblems whose m has no stored set are reported as skipped.  The robot is first normalized
   to the scale of the stored sets: base centred at the centroid c of the exit points, world frame turned by
   Rw so that the load acts along -z, lengths divided by L = ``robot.size``, load Q d replaced by -z; then
   p = c + L Rw^T p^, R = Rw^T R^, lam = Q lam^ / L, tau_i = lam_i rho_i.
   Tracking uses the compiled tracker (:mod:`.homotopy.compiled` with the numba evaluators and structured linear
-  solve of :mod:`.dgp_kernels`; numpy evaluators :class:`FastTautSystem` for the endgame checks and retries;
+  solve of :mod:`cdpr_algebra.dgp.kernels`; numpy evaluators :class:`FastTautSystem` for the endgame checks and retries;
   predictor tolerance 1e-4).  No norm decides whether a path goes to infinity: the endgame of every path that
   does not finish as a regular point runs in a random chart of projective space (all unknowns, tensions
   included, homogenized; :mod:`.homotopy.endgame`), where a path is ``at_infinity`` only when the homogenizing
@@ -39,8 +39,8 @@ rho_i, rho_j of A_i, A_j: taut or slack); two taut cables also need |rho_i - rho
 **Filtering** of the finite endpoints (after two real Newton steps on the normalized system):
 real (imaginary parts <= 1e-6 in the normalized, unit-size coordinates); a proper rotation
 (|R^T R - I| <= 1e-6, det R > 0); tensions tau_i >= -tol with tol = 1e-9 Q; every other cable slack:
-|B_j - A_j| <= rho_j (1 + 1e-9).  Stability: class of the reduced Hessian (:mod:`.stability`), stable = '>'.
-**Certification** (:mod:`.certify`): every admissible solution gets an interval certificate (Krawczyk:
+|B_j - A_j| <= rho_j (1 + 1e-9).  Stability: class of the reduced Hessian (:mod:`cdpr_algebra.model.stability`), stable = '>'.
+**Certification** (:mod:`cdpr_algebra.certify.equilibria`): every admissible solution gets an interval certificate (Krawczyk:
 existence and uniqueness in a box of relative width <= 1e-9, tension signs, slack margins, Hessian class).
 
 **Deduplication rule.** An equilibrium is reported once, in the subproblem with the fewest taut cables:
@@ -63,12 +63,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .dgp_equations import decode, taut_family
-from .dgp_one_cable import one_cable_equilibria
-from .homotopy.results import FAILURES, OUTCOMES, outcome_counts
-from .jsonable import jsonable
-from .pose import angles_from_matrix, rotation_taking
-from .stability import skew_stack, stability_classes
+from cdpr_algebra.model.taut_equations import decode, taut_family
+from .one_cable import one_cable_equilibria
+from cdpr_algebra.homotopy.results import FAILURES, OUTCOMES, outcome_counts
+from cdpr_algebra.report.jsonable import jsonable
+from cdpr_algebra.model.pose import angles_from_matrix, rotation_taking
+from cdpr_algebra.model.stability import skew_stack, stability_classes
 
 __all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune",
            "lengths_and_taut_sets", "solve_each_taut_set"]
@@ -91,7 +91,7 @@ def available_m() -> list[int]:
 
 def _generic(m: int):
     if m not in _GENERIC:
-        from .homotopy.monodromy import load_instance
+        from cdpr_algebra.homotopy.monodromy import load_instance
 
         # the residual by the hand-written evaluator; the hash of the sympy family (slow to build: ~0.25 s per m,
         # every process) is checked by tests/test_dgp.py::test_stored_generic_sets
@@ -143,7 +143,7 @@ class DGPSolution:
 class DGPSubproblem:
     """One taut set.  ``outcomes``: paths per outcome (regular, singular, at_infinity, failed; they add up to
     ``paths``); ``failures``: failed paths per reason; ``certified`` (``certified_real``): regular endpoints proven
-    to be distinct roots (real roots) by Krawczyk boxes that are pairwise disjoint (:func:`.certify.certify_endpoints`;
+    to be distinct roots (real roots) by Krawczyk boxes that are pairwise disjoint (:func:`cdpr_algebra.certify.equilibria.certify_endpoints`;
     None where no path was tracked), ``uncertified``: the others per reason; ``complete``: no path failed, the
     outcomes account for the generic count, and every regular endpoint is certified (or the set is proven empty by
     pruning, or solved analytically)."""
@@ -231,7 +231,7 @@ class DGPResult:
 
 # ---------------------------------------------------------------------------------------------
 class FastTautSystem:
-    """:func:`.dgp_equations.taut_family` (m) with hand-written vectorized evaluators of F, dF/dx, dF/dp (the
+    """:func:`cdpr_algebra.model.taut_equations.taut_family` (m) with hand-written vectorized evaluators of F, dF/dx, dF/dp (the
     same equations in the same order; checked against the compiled sympy evaluators in tests/test_dgp.py).
     Everything else (name, hash, equations, mpmath evaluators, used by the projective retries) is the
     sympy family's."""
@@ -261,8 +261,8 @@ class FastTautSystem:
         return getattr(self.family, name)
 
     def compiled_kernels(self):
-        """Numba evaluators and structured linear solve for the compiled tracker (:mod:`.dgp_kernels`)."""
-        from .dgp_kernels import taut_apply, taut_factor, taut_fj, taut_fjt
+        """Numba evaluators and structured linear solve for the compiled tracker (:mod:`cdpr_algebra.dgp.kernels`)."""
+        from .kernels import taut_apply, taut_factor, taut_fj, taut_fjt
 
         return taut_fj, taut_fjt, taut_factor, taut_apply
 
@@ -292,7 +292,7 @@ class FastTautSystem:
         F[:, 0] = np.einsum("nk,nk->n", u, u) - 1
         F[:, 1] = np.einsum("nk,nk->n", v, v) - 1
         F[:, 2] = np.einsum("nk,nk->n", u, v)
-        from .statics import cross
+        from cdpr_algebra.model.statics import cross
 
         uv = cross(u, v)
         F[:, 3:6] = w - uv
@@ -459,8 +459,8 @@ PROJECTIVE_RETRIES = 1  # rounds of projective re-tracking of suspect paths (ste
 def default_options():
     """The homotopy options of the DGP (module doc): predictor tolerance 1e-4, projective endgame, no in-place
     double-precision retries (suspect paths are re-tracked in projective coordinates), no arbitrary precision."""
-    from .homotopy.endgame import EndgameOptions, SolveOptions
-    from .homotopy.tracker import TrackerOptions
+    from cdpr_algebra.homotopy.endgame import EndgameOptions, SolveOptions
+    from cdpr_algebra.homotopy.tracker import TrackerOptions
 
     return SolveOptions(tracker=TrackerOptions(predictor_tol=1e-4), endgame=EndgameOptions(projective=True),
                         retry_tight=False, retry_mpmath=False, max_mpmath_paths=MP_RETRY_PATHS)
@@ -468,7 +468,7 @@ def default_options():
 
 def _track(m, target, seed, gamma, options=None):
     """Parameter homotopy from the stored generic set (see the module doc).  Returns (result, failed paths)."""
-    from .homotopy.solve import solve_parameter_homotopy
+    from cdpr_algebra.homotopy.solve import solve_parameter_homotopy
 
     p_gen, X_gen = _generic(m)
     # no in-place double retries: suspect paths are re-tracked in projective coordinates; in the re-run with a
@@ -485,7 +485,7 @@ def _track(m, target, seed, gamma, options=None):
 
 def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, options=None):
     """(DGPSubproblem, [DGPSolution]) for the 0-based taut set ``cables`` (pruning, tracking, filtering, and
-    with ``certify`` an interval certificate for every admissible solution, :mod:`.certify`); ``options``: the
+    with ``certify`` an interval certificate for every admissible solution, :mod:`cdpr_algebra.certify.equilibria`); ``options``: the
     homotopy's :class:`.homotopy.endgame.SolveOptions` (default: those of the module doc)."""
     sub, sols, Z = _solve_and_certify_solutions(robot, rho, cables, seed, certify, options)
     (sub,) = _with_endpoint_certificates(robot, rho, [(cables, sub, Z)])
@@ -493,10 +493,10 @@ def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, opti
 
 
 def _certify_solutions(robot, rho, sols):
-    """The admissible solutions with their interval certificates (:func:`.certify.certify_taut_root`)."""
+    """The admissible solutions with their interval certificates (:func:`cdpr_algebra.certify.equilibria.certify_taut_root`)."""
     if not sols:
         return sols
-    from .certify import certify_taut_root
+    from cdpr_algebra.certify.equilibria import certify_taut_root
 
     return [s.with_certificate(certify_taut_root(robot, rho, [t - 1 for t in s.taut], s.position, s.rotation,
                                                  s.tensions[[t - 1 for t in s.taut]])) for s in sols]
@@ -589,10 +589,10 @@ def _world_coordinates(X, m, c, L, Rw, Q):
 
 def _with_endpoint_certificates(robot, rho, items) -> list:
     """The subproblems of ``items`` = [(0-based cables, DGPSubproblem, regular endpoints in world coordinates or
-    None)] with their endpoint certificates (one vectorized Krawczyk run per m, :func:`.certify.certify_endpoints`)
+    None)] with their endpoint certificates (one vectorized Krawczyk run per m, :func:`cdpr_algebra.certify.equilibria.certify_endpoints`)
     and ``complete`` decided: no failed path, outcomes adding up to the generic count, and every regular endpoint
     proven a distinct root (its box unique-root, disjoint from the others)."""
-    from .certify import certify_endpoints
+    from cdpr_algebra.certify.equilibria import certify_endpoints
 
     out = [sub for _, sub, _ in items]
     by_m = {}
@@ -719,7 +719,7 @@ def _certified_label(s) -> str:
 
 def dgp_table(result: DGPResult, n: int) -> str:
     """Seed 000 Tables 1-3 layout: Conf., m, position of O', angles, tensions, H_r class."""
-    from .tables import format_table
+    from cdpr_algebra.report.tables import format_table
 
     headers = ["conf", "m", "x_O'", "y_O'", "z_O'", "phi_x", "phi_y", "phi_z"] + [f"tau_{i + 1}" for i in range(n)] + ["H_r", "certified"]
     rows = []

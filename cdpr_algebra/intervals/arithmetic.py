@@ -1,4 +1,4 @@
-"""Vectorized interval arithmetic on numpy arrays, outward rounded (the arithmetic of :mod:`.interval_bp`).
+"""Vectorized interval arithmetic on numpy arrays, outward rounded (the arithmetic of :mod:`cdpr_algebra.bp.solver`).
 
 An :class:`Interval` holds two float64 arrays ``lo`` and ``hi`` of the same (broadcastable) shape: a batch of
 intervals, e.g. a batch of boxes of shape (nboxes, nvars).  Operations act elementwise with numpy broadcasting.
@@ -107,7 +107,7 @@ def enclose_fraction(fr) -> tuple[float, float]:
 
 def _foreign(o) -> bool:
     """o is a number type of another module that opted out of numpy's ufuncs (``__array_ufunc__ = None``, e.g.
-    :class:`.complex_krawczyk.ComplexPair`): Interval and Dual operators defer to its reflected operators."""
+    :class:`cdpr_algebra.intervals.complex_krawczyk.ComplexPair`): Interval and Dual operators defer to its reflected operators."""
     t = type(o)
     return t is not Interval and t is not Dual and getattr(t, "__array_ufunc__", 0) is None
 
@@ -734,7 +734,7 @@ def newton(residual, x0, iterations: int = 8, tol: float = 1e-13):
 
 
 # ---------------------------------------------------------------------------------------------------------------
-# Compiled scalar interval operations (numba), for the per-box kernels of :mod:`.interval_bp` and
+# Compiled scalar interval operations (numba), for the per-box kernels of :mod:`cdpr_algebra.bp.solver` and
 # :meth:`QuadraticSystem.taylor_contract`.  Each takes and returns (lo, hi) float pairs and performs exactly the
 # operations of the vectorized :class:`Interval` method of the same name with the default "fast" widening
 # (x -+ min(|x| 2^-52 + 2^-900, 1e300) after every rounded operation), so the two give identical bounds

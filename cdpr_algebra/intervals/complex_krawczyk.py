@@ -2,11 +2,11 @@
 
 A complex square system F(z) = 0, z in C^n, is certified as the real system of 2n equations
 (Re F, Im F)(a, b) = 0 in z = a + i b, whose Jacobian is [[Re J, -Im J], [Im J, Re J]] (Cauchy-Riemann,
-:func:`realified_jacobian`): the Krawczyk operator of :func:`.interval_boxes.krawczyk` (rigorous, outward rounded,
+:func:`realified_jacobian`): the Krawczyk operator of :func:`cdpr_algebra.intervals.arithmetic.krawczyk` (rigorous, outward rounded,
 vectorized over boxes) proves that a box X = y +/- r holds exactly one root when K(X) lies in the interior of X
 (Krawczyk / Moore; R. Krawczyk 1969, R. E. Moore 1977).  The system and its Jacobian are written once in plain
 arithmetic (+, -, *) and evaluated over complex numpy arrays (Newton's method) and over :class:`ComplexPair`
-numbers whose parts are :class:`.interval_boxes.Interval` (the enclosures over a complex box).
+numbers whose parts are :class:`cdpr_algebra.intervals.arithmetic.Interval` (the enclosures over a complex box).
 
 **Real or not, proven.**  The coefficients are real, so the conjugate of a root is a root.  A root whose float
 approximation has zero imaginary part is centred on the real space (y_im = 0), so its box is invariant under
@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .interval_boxes import Interval, krawczyk
+from .arithmetic import Interval, krawczyk
 
 __all__ = ["ComplexPair", "realified_jacobian", "ComplexRootBoxes", "certify_complex_roots", "overlapping"]
 
@@ -271,7 +271,7 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
     """
     from flint import acb, acb_mat, arb, ctx
 
-    from .intervals import lower, upper
+    from .balls import lower, upper
 
     z = np.asarray(z, dtype=complex)
     n = len(z)

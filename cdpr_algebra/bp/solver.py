@@ -1,7 +1,7 @@
 """Interval branch-and-prune DGP solver (seed 000, Berti-Merlet-Carricato 2016): an independent, complete method
 that finds every admissible equilibrium (real, tensions >= 0, other cables slack) of each set of taut cables.
 
-Everything rests on the outward-rounded arithmetic of :mod:`.interval_boxes`: boxes are processed in batches
+Everything rests on the outward-rounded arithmetic of :mod:`cdpr_algebra.intervals.arithmetic`: boxes are processed in batches
 (arrays of lower / upper bounds of shape (nboxes, ncols)), and every exclusion, every contraction and every
 existence-and-uniqueness proof is rigorous.  The filter and the second-order operator, where the time goes, run
 box by box in compiled kernels (numba; ``KERNELS = "compiled"``, the default) made of the scalar twins of the
@@ -51,7 +51,7 @@ iterated, the vectorized order):
 
 **Evaluation operator with unicity test (Sec. 4.2).**  Every equation set is quadratic (seed 000's remark, which
 makes its Kantorovich constant p fixed), so F(x) = F(y) + J(y)(x - y) + (1/2) Q(x - y) holds exactly with constant
-Hessians (:class:`.interval_boxes.QuadraticSystem`).  On every bounded box the operator
+Hessians (:class:`cdpr_algebra.intervals.arithmetic.QuadraticSystem`).  On every bounded box the operator
 T(X) = y - C F(y) - (C J(y) - I)(X - y) - C (1/2) Q(X - y), C = mid J(y)^-1, excludes the box (T(X) cap X empty) or
 contracts it (X cap T(X)); it plays the role of the gradient-based evaluation and interval Newton filtering of
 ALIAS's Solve_General_Gradient_Interval and is about twice as tight as the Krawczyk operator.  On boxes narrower
@@ -80,12 +80,12 @@ from fractions import Fraction
 import numba as nb
 import numpy as np
 
-from .dgp import solve_each_taut_set
-from .interval_boxes import (Interval, QuadraticSystem, _float_inverse, _gamma, _midrad, enclose_fraction, inv_sqr,
+from cdpr_algebra.dgp.solve import solve_each_taut_set
+from cdpr_algebra.intervals.arithmetic import (Interval, QuadraticSystem, _float_inverse, _gamma, _midrad, enclose_fraction, inv_sqr,
                              mr_matmul, newton, s_add, s_div, s_down, s_fmax, s_fmin, s_inv_sqr, s_mid, s_midrad,
                              s_mr_radius, s_mul, s_sqr, s_sub, s_up, sq, stack, up)
-from .jsonable import jsonable
-from .pose import angles_from_matrix
+from cdpr_algebra.report.jsonable import jsonable
+from cdpr_algebra.model.pose import angles_from_matrix
 
 __all__ = ["BPOptions", "IntervalSolution", "UndecidedBox", "IntervalSubproblem", "IntervalDGPResult",
            "solve_taut_set_interval", "interval_dgp", "build_model"]
@@ -1245,7 +1245,7 @@ def contract_vectorized(model: Model, lo, hi, opts: BPOptions):
 
 # ---------------------------------------------------------------------------------------------------------------
 # compiled contractors: the filter operator box by box (numba).  The same contractors as above, in the same order
-# and with the same outward-rounded operations (:mod:`.interval_boxes` s_* twins of the vectorized ones); a box
+# and with the same outward-rounded operations (:mod:`cdpr_algebra.intervals.arithmetic` s_* twins of the vectorized ones); a box
 # reads its own latest bounds (each projection intersects at once, Gauss-Seidel style, which is at least as tight
 # as the vectorized version's simultaneous update and as rigorous: every bound used encloses the box), and
 # the work on a box stops as soon as it is empty.  tests/test_interval_bp.py checks them against the vectorized
@@ -1477,7 +1477,7 @@ def _c_chirality(lo, hi, n, chir, dl, dh):
 @nb.njit(cache=True, error_model="numpy")
 def _c_statics_rows(lo, hi, n, bcols, gcol, lam0, Em, Er, Hm, Hr, act, passes):
     """:func:`contract_statics_rows`: for every row r, sum_i lam_i e_ri(B_i) + h_r(G) = 0 with e_ri = k0_ri +
-    kc_ri . B_i and h_r = h0_r + hc_r . G (midpoint-radius products as :func:`.interval_boxes.mr_matmul`):
+    kc_ri . B_i and h_r = h0_r + hc_r . G (midpoint-radius products as :func:`cdpr_algebra.intervals.arithmetic.mr_matmul`):
     exclusion, projection onto each lam_i (lam_i in -(others) / e_ri), all rows with the same lam as the vectorized
     version (loops over the rows innermost, so that they vectorize), repeated (``passes``) while some lam shrinks by
     more than 10 %: e and h depend on the pose only.  ``act`` (m, R): cable i is in row r."""

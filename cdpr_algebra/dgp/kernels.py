@@ -1,8 +1,8 @@
-"""Compiled (numba) evaluators of the DGP taut-set equations of :mod:`.dgp_equations`, for the compiled tracker.
+"""Compiled (numba) evaluators of the DGP taut-set equations of :mod:`cdpr_algebra.model.taut_equations`, for the compiled tracker.
 
 ``taut_fj(x, p, F, J)`` writes F and dF/dx, ``taut_fjt(x, p, dp, F, J, Ht)`` also Ht = dF/dp . dp, for any
 m = 2 .. 6 (m = len(x) - 12), with x = (p, u, v, w, lam) and p = (A_i, rho_i^2, b'_i, g', Q d) in the order of
-:func:`.dgp_equations.taut_family`.  With R = [u v w], B_i = p + R b'_i, G = p + R g', s_i = B_i - A_i:
+:func:`cdpr_algebra.model.taut_equations.taut_family`.  With R = [u v w], B_i = p + R b'_i, G = p + R g', s_i = B_i - A_i:
 
     F = (u.u - 1, v.v - 1, u.v, w - u x v, |s_i|^2 - rho_i^2, -sum lam_i s_i + Q d, G x Q d + sum lam_i B_i x A_i)
 
@@ -20,7 +20,7 @@ import numba as nb
 import numpy as np
 from numba import types as nbt
 
-from .homotopy.compiled import APPLY_SIG, FACTOR_SIG, lu_apply_sparse_lead, lu_factor_sparse_lead
+from cdpr_algebra.homotopy.compiled import APPLY_SIG, FACTOR_SIG, lu_apply_sparse_lead, lu_factor_sparse_lead
 
 __all__ = ["taut_fj", "taut_fjt", "taut_factor", "taut_apply"]
 

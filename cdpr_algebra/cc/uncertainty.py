@@ -11,7 +11,7 @@ equilibrium X^r near X (seed 002: no change of CC on the way); the CC is valid t
 R0^T R^r (seed 004 eq. 20 with e0 = 1) and lam_i = tau_i / rho_i; equations (12): the six cable lengths
 |A^r_i - G^r - R^r c^r_i|^2 = (rho^r_i)^2 (c^r_i = b'^r_i - g') and the statics sum lam_i (A^r_i - B^r_i ;
 c_i x (A^r_i - B^r_i)) = -Q (d ; 0) (moments about G).  With the 42 parameters as arb balls, the Krawczyk test of
-:mod:`.intervals` proves that for EVERY parameter value in the box there is exactly one solution in the box found
+:mod:`cdpr_algebra.intervals.balls` proves that for EVERY parameter value in the box there is exactly one solution in the box found
 (the real equilibrium near X and its tensions), and encloses it; if every lam_i of the enclosure is > 0 the CC is
 valid for every robot in the ranges.  The mean-value form keeps the correlation between pose and tensions.  When the
 test or the sign check fails, the parameter box is bisected (along the parameter with the largest first-order
@@ -31,9 +31,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .configurations import check_pose, configuration_tensions
-from .errors import CdprInputError
-from .jsonable import jsonable
-from .pose import matrix_from_rodrigues, angles_from_matrix
+from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.report.jsonable import jsonable
+from cdpr_algebra.model.pose import matrix_from_rodrigues, angles_from_matrix
 
 __all__ = ["UncertaintyResult", "uncertainty_check", "equilibrium"]
 
@@ -371,7 +371,7 @@ def uncertainty_check(robot, position, cables, rotation=None, dA: float = 0.005,
     """Seed 002 Sec. II-D for the 6-cable CC ``cables`` (0-based) at the pose (see the module doc)."""
     from flint import arb
 
-    from .intervals import krawczyk_certify, lower, upper
+    from cdpr_algebra.intervals.balls import krawczyk_certify, lower, upper
 
     t0 = time.perf_counter()
     for name, v in (("dA", dA), ("dB", dB), ("drho", drho)):
@@ -443,7 +443,7 @@ def _contract(mf, mb, lo, hi, rounds: int = 4):
     parameters as balls, ``mf`` with their centres (floats, for the preconditioner).  Returns (lo, hi, empty)."""
     from flint import arb, arb_mat
 
-    from .intervals import lower, upper
+    from cdpr_algebra.intervals.balls import lower, upper
 
     eye = arb_mat(6, 6, [1 if i == j else 0 for i in range(6) for j in range(6)])
     for _ in range(rounds):
@@ -488,7 +488,7 @@ def _pose_region_proof(robot, cables, R0, G, Ab, cb, rb, rp, re, max_boxes):
     tensions stay > 0.  Returns (True / None, info)."""
     from flint import arb, arb_mat
 
-    from .intervals import krawczyk_certify, lower, upper
+    from cdpr_algebra.intervals.balls import krawczyk_certify, lower, upper
 
     region_lo = np.concatenate([G - rp, [-re] * 3])
     region_hi = np.concatenate([G + rp, [re] * 3])

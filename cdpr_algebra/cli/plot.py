@@ -1,5 +1,5 @@
 """``cdpr plot ROBOT [--lengths L1 .. Ln] [--out FILE.png|.svg] [--jobs N]``: run the DGP and draw its admissible
-equilibria (:func:`.plot.plot_equilibria`), one panel per equilibrium, into a PNG or SVG file.
+equilibria (:func:`cdpr_algebra.report.plot.plot_equilibria`), one panel per equilibrium, into a PNG or SVG file.
 
 The table of ``cdpr dgp`` goes to stdout, then the file written; progress to stderr.  Default output file:
 ``<robot file stem>_equilibria.png`` in the current directory.
@@ -10,13 +10,13 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from .errors import CdprInputError
+from cdpr_algebra.model.errors import CdprInputError
 
 SUFFIXES = (".png", ".svg")
 
 
 def add_parser(subparsers) -> None:
-    from .cli import _finite
+    from .main import _finite
 
     p = subparsers.add_parser("plot", help="run the DGP and draw its admissible equilibria (PNG or SVG)")
     p.add_argument("robot", help="robot file (.json or .toml)")
@@ -38,10 +38,10 @@ def output_path(out: str | None, robot_file: str) -> Path:
 
 
 def run(args) -> int:
-    from .cli import _dgp_lengths
-    from .dgp import dgp, dgp_table
-    from .plot import plot_equilibria
-    from .robot import load_robot
+    from .main import _dgp_lengths
+    from cdpr_algebra.dgp.solve import dgp, dgp_table
+    from cdpr_algebra.report.plot import plot_equilibria
+    from cdpr_algebra.model.robot import load_robot
 
     out = output_path(args.out, args.robot)
     robot = load_robot(args.robot)

@@ -12,10 +12,10 @@ M(X') is nonsingular that solution is THE solution.  So if every lam_j is proven
 containing the ball, no sub-configuration (whatever its cable lengths) has an equilibrium there.  The box is
 G +- R per coordinate and Rodrigues parameters e in [-tan(R/2), tan(R/2)]^3 (R' = R0 R(e), seed 004 eq. 20 with
 e0 = 1), which contains every rotation of angle <= R; on each box the tensions are enclosed by the Krawczyk test of
-:mod:`.intervals` on the linear system (interval matrix from arb arithmetic), and boxes that fail are bisected.
+:mod:`cdpr_algebra.intervals.balls` on the linear system (interval matrix from arb arithmetic), and boxes that fail are bisected.
 
 **DGP search (the paper's statement, slower).**  For every proper subset S of the CC, the direct geometrico-static
-problem of the CC's cables with the lengths of the pose (:func:`.dgp.solve_taut_set`; cables outside the CC are
+problem of the CC's cables with the lengths of the pose (:func:`cdpr_algebra.dgp.solve_taut_set`; cables outside the CC are
 slack by control and left out) gives every admissible equilibrium with exactly S taut; the nearest one is reported.
 It is run when the exclusion fails (to decide) or on request (``nearest=True``).
 
@@ -23,7 +23,7 @@ It is run when the exclusion fails (to decide) or on request (``nearest=True``).
 
 * ``safe = True``, method "interval exclusion proof": proven, no sub-configuration equilibrium within the radius.
 * ``safe = False``, method "homotopy search": a verified counterexample -- an equilibrium of a sub-configuration
-  certified by its interval certificate (:mod:`.certify`: existence, uniqueness, positive tensions, slack cables)
+  certified by its interval certificate (:mod:`cdpr_algebra.certify.equilibria`: existence, uniqueness, positive tensions, slack cables)
   whose distance to the pose, bounded from above in ball arithmetic over the certified box, is <= the radius.
 * ``safe = None`` otherwise: the homotopy search found no sub-configuration equilibrium within the radius (not a
   proof: the homotopy is a floating-point search), or found one it could not verify; ``status`` says which.
@@ -38,8 +38,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .configurations import check_pose, configuration_tensions
-from .errors import CdprInputError
-from .jsonable import jsonable
+from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.report.jsonable import jsonable
 
 __all__ = ["SafetyResult", "pose_distance", "exclusion_proof", "exclusion_radius", "sub_configuration_equilibria", "safety",
            "distance_upper_bound", "PROOF", "SEARCH"]
@@ -81,7 +81,7 @@ def _wrench_box(robot, cables, R0, lo, hi):
         for a in range(6):
             M[a, j] = col[a]
     # float midpoint matrix (the point pose at the box centre)
-    from .pose import matrix_from_rodrigues
+    from cdpr_algebra.model.pose import matrix_from_rodrigues
 
     Rm = np.asarray(R0) @ matrix_from_rodrigues(*mid[3:])
     c = (robot.platform[list(cables)] - robot.com) @ Rm.T
@@ -93,7 +93,7 @@ def _wrench_box(robot, cables, R0, lo, hi):
 def _positive_on_box(robot, cables, R0, rhs, lo, hi):
     """True: every lam_j > 0 proven on the box; False: a point of the box (its centre) has some lam_j <= 0 or a
     singular matrix; None: undecided (bisect)."""
-    from .intervals import krawczyk_certify
+    from cdpr_algebra.intervals.balls import krawczyk_certify
 
     M, Mm = _wrench_box(robot, cables, R0, lo, hi)
     try:
@@ -173,7 +173,7 @@ def sub_configuration_equilibria(robot, position, cables, rotation=None, sizes=r
     """Every admissible equilibrium of every proper subset of the CC ``cables`` (0-based), with the CC's cables at
     their lengths at the pose (others left out: slack by control).  Returns ([(d, dpos, theta, S, DGPSolution)]
     sorted by d, [DGPSubproblem]); S and the solutions' ``taut`` are 1-based robot cable numbers."""
-    from .dgp import solve_taut_set
+    from cdpr_algebra.dgp.solve import solve_taut_set
 
     G, R0 = check_pose(robot, position, rotation)
     cables = tuple(cables)
@@ -203,7 +203,7 @@ def distance_upper_bound(G0, R0, certificate, com) -> float | None:
     theta = 2 asin(|R - R0|_F / (2 sqrt 2)) (for rotations |R - R0|_F^2 = 4 (1 - cos theta) = 8 sin^2(theta / 2))."""
     from flint import arb
 
-    from .intervals import upper
+    from cdpr_algebra.intervals.balls import upper
 
     if certificate is None or not getattr(certificate, "exists_unique", False):
         return None

@@ -7,7 +7,7 @@ are polynomials in it) or *angular* (they are polynomials in its cos and sin, af
 c = cos p, s = sin p are the unknowns, with c^2 + s^2 = 1); anything else is refused (CdprInputError).
 
 **Validity along the path** (checked first).  The CC keeps its tensions' signs along the path iff none of its
-seven cubics Q (|M| and the |M_i|, :mod:`.cc_radii`) vanishes on the path.  On a trajectory Q(f(t)) is a
+seven cubics Q (|M| and the |M_i|, :mod:`cdpr_algebra.cc.radii`) vanishes on the path.  On a trajectory Q(f(t)) is a
 univariate polynomial (in t, or in tau = tan(p/2) for an angular parameter, with p = pi checked apart): its real
 roots in the range are the crossings.  On a surface, Q(f(u, v)) has no zero iff it has none on the four edges
 (univariate) and no interior critical point of the other sign (a closed zero curve inside the rectangle would
@@ -22,8 +22,8 @@ seed 002: 7 equations for a trajectory, 8 for a surface)
 (in scaled coordinates), solved for ALL its complex solutions: the system, with the 20 coefficients of the cubic as
 parameters, is homogenized (:func:`.homotopy.projective.projectivize`), solved once for random complex coefficients
 by a total-degree homotopy in the chart, and the seven cubics of the CC are then reached by one batched parameter
-homotopy (the label-coordinate trick of :mod:`.cc_radii`).  As the paper says, the minimum may also sit on the
-boundary: the end points of a trajectory (pose radii, :func:`.cc_radii.cc_radii_many`), the edges of a surface
+homotopy (the label-coordinate trick of :mod:`cdpr_algebra.cc.radii`).  As the paper says, the minimum may also sit on the
+boundary: the end points of a trajectory (pose radii, :func:`cdpr_algebra.cc.radii.cc_radii_many`), the edges of a surface
 (trajectory problems) and its corners (poses).  Real singular points z_s of a surface {Q = 0} (grad Q = 0, where the
 Lagrange condition fails) are added with their distance to the path (univariate).  The index is the smallest of all
 these distances over the seven cubics.
@@ -38,10 +38,10 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from .cc_radii import MONOMIALS, INFINITY_Y0, LABEL_SCALE, _polynomials_batch, _track_batch, cc_radii_many
+from .radii import MONOMIALS, INFINITY_Y0, LABEL_SCALE, _polynomials_batch, _track_batch, cc_radii_many
 from .configurations import check_pose, configuration_tensions, parse_cables, valid_configurations
-from .errors import CdprInputError
-from .jsonable import jsonable
+from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.report.jsonable import jsonable
 
 __all__ = ["PathSpec", "PathRadii", "parse_path", "path_radii", "path_configurations", "crossings"]
 
@@ -262,7 +262,7 @@ class _Family:
     homotopies.  Solutions come back affine; those at infinity (y0 ~ 0) are dropped."""
 
     def __init__(self, system, seed: int = 0):
-        from .homotopy.projective import projectivize
+        from cdpr_algebra.homotopy.projective import projectivize
 
         self.system = system
         self.Fh, self.chart = projectivize(system, seed=20131 + seed)
@@ -276,7 +276,7 @@ class _Family:
     def generic(self):
         if self._generic is not None:
             return self._generic
-        from .homotopy.projective import to_chart
+        from cdpr_algebra.homotopy.projective import to_chart
 
         rng = np.random.default_rng([self.seed, 2002])
         p1 = rng.normal(size=self.system.m) + 1j * rng.normal(size=self.system.m)
@@ -440,7 +440,7 @@ def _path_exprs_scaled(spec: PathSpec, center, h):
 
 def _lagrange_family(phi, unknowns, circles, seed=0) -> _Family:
     """The Lagrange system of min |w - phi(p)|^2 on {Q(w) = 0}, cubic coefficients as parameters."""
-    from .homotopy.systems import PolynomialSystem
+    from cdpr_algebra.homotopy.systems import PolynomialSystem
 
     w = sp.symbols("w1:4")
     lam = sp.Symbol("lam")
@@ -517,8 +517,8 @@ def _surface_zeros(Qp, spec: PathSpec, unknowns):
     ref = g(*_unknown_values(spec, [spec.ranges[0][0], spec.ranges[1][0]]))
     edge_vals.append(ref)
     # interior critical points of g over the rectangle (homotopy engine, total degree)
-    from .homotopy.solve import solve
-    from .homotopy.systems import PolynomialSystem
+    from cdpr_algebra.homotopy.solve import solve
+    from cdpr_algebra.homotopy.systems import PolynomialSystem
 
     xs = [v for u in unknowns for v in u]
     eqs = []
@@ -556,8 +556,8 @@ def _fix_parameter(expr, spec: PathSpec, unknowns, j, value):
 
 def _singular_points(C) -> list:
     """Real singular points (grad Q = 0 on Q = 0) of each cubic of C (K, 20): the mu = 0 endpoints of the pose
-    distance homotopy of :mod:`.cc_radii` (any point would do as the pose; the origin is used)."""
-    from .cc_radii import distance_to_cubics
+    distance homotopy of :mod:`cdpr_algebra.cc.radii` (any point would do as the pose; the origin is used)."""
+    from .radii import distance_to_cubics
 
     out = []
     for cd in distance_to_cubics(np.atleast_2d(C)):
@@ -583,8 +583,8 @@ def _point_path_distance(spec: PathSpec, phi, unknowns, z):
     else:
         # coarse but safe: the distance to a singular point is a rare candidate; take the min over edges and interior
         # critical points of |z - phi|^2 by the same machinery as the surface zeros
-        from .homotopy.solve import solve
-        from .homotopy.systems import PolynomialSystem
+        from cdpr_algebra.homotopy.solve import solve
+        from cdpr_algebra.homotopy.systems import PolynomialSystem
 
         xs = [v for uu in unknowns for v in uu]
         eqs = []

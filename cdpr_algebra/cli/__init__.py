@@ -1,0 +1,1 @@
+"""The command-line interface ``cdpr``: one module per command; shared helpers in :mod:`.common`."""

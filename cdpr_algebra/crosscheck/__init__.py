@@ -1,0 +1,1 @@
+"""Comparison of two independent solvers of the DGP, taut set by taut set."""
