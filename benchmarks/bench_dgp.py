@@ -60,7 +60,8 @@ def phc_compare(path, cable_sets, repeat, timeout):
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bench_homotopy import phc_run
 
-    from cdpr_algebra.dgp.solve import _normalized, lengths_and_taut_sets, solve_taut_set
+    from cdpr_algebra.dgp.solve import _normalized, solve_taut_set
+    from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
     from cdpr_algebra.model.taut_equations import taut_family
 
     robot = load_robot(path)

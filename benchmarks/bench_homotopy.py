@@ -41,7 +41,8 @@ sys.path.insert(0, str(ROOT / "derivations"))
 
 from cdpr_algebra.model.robot import load_robot  # noqa: E402
 from cdpr_algebra.homotopy import SolveOptions, TrackerOptions, solve, solve_parameter_homotopy  # noqa: E402
-from cdpr_algebra.homotopy.families import cyclic, dgp3_family, dgp3_parameters, dgp3_poses, katsura  # noqa: E402
+from cdpr_algebra.dgp.anchor_points import dgp3_family, dgp3_parameters, dgp3_poses  # noqa: E402
+from cdpr_algebra.homotopy.families import cyclic, katsura  # noqa: E402
 from cdpr_algebra.homotopy.monodromy import load_instance  # noqa: E402
 
 DATA = ROOT / "cdpr_algebra" / "data" / "dgp3_generic.json"

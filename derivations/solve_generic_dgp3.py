@@ -24,7 +24,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from cdpr_algebra.homotopy.families import dgp3_family, dgp3_parameters  # noqa: E402
+from cdpr_algebra.dgp.anchor_points import dgp3_family, dgp3_parameters  # noqa: E402
 from cdpr_algebra.homotopy.monodromy import MonodromyOptions, monodromy_solve, save_instance  # noqa: E402
 from cdpr_algebra.model.robot import load_robot  # noqa: E402
 

@@ -172,7 +172,8 @@ def test_cli_exit_status_and_json(monkeypatch, capsys, boundary_case):
 def test_comparison_reuses_a_dgp_run(test1):
     """A comparison built on the subproblem of an earlier whole-robot DGP (``homotopy_result``, taken with
     ``DGPResult.taut_set``) says what a comparison that runs the homotopy itself says, on every taut set."""
-    from cdpr_algebra.dgp.solve import dgp, lengths_and_taut_sets
+    from cdpr_algebra.dgp.solve import dgp
+    from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 
     res = dgp(test1)
     rho, sets = lengths_and_taut_sets(test1, None, 6)

@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 import cdpr_algebra.homotopy.endgame as eg
-from cdpr_algebra.dgp.solve import _generic, default_options, lengths_and_taut_sets, solve_taut_set
+from cdpr_algebra.dgp.solve import _generic, default_options, solve_taut_set
+from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from cdpr_algebra.homotopy.results import STEP_TOO_SMALL
 from cdpr_algebra.model.robot import load_robot
 

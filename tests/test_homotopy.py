@@ -15,8 +15,8 @@ from cdpr_algebra.homotopy import (ParameterHomotopy, PolynomialSystem, SolveOpt
                                    multi_homogeneous, multi_homogeneous_bezout_number, solve,
                                    solve_parameter_homotopy, track_paths, track_segment)
 from cdpr_algebra.homotopy.endgame import mp_track
-from cdpr_algebra.homotopy.families import (cyclic, dgp3_family, dgp3_parameters, dgp3_poses, katsura,
-                                            stewart_gough)
+from cdpr_algebra.dgp.anchor_points import dgp3_family, dgp3_parameters, dgp3_poses
+from cdpr_algebra.homotopy.families import cyclic, katsura, stewart_gough
 from cdpr_algebra.homotopy.monodromy import (MonodromyOptions, load_instance, monodromy_solve, save_instance)
 from cdpr_algebra.homotopy.start_systems import random_gamma, total_degree
 from cdpr_algebra.model.robot import load_robot

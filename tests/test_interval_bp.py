@@ -377,7 +377,7 @@ def _crosscheck_all_agree(name):
     is incomplete there (failed paths or uncertified endpoints; issue 15: counted, not hidden); returns (robot, interval subproblems, interval
     admissible count by m)."""
     from cdpr_algebra.crosscheck.compare import CrosscheckResult, compare_taut_set, crosscheck_table
-    from cdpr_algebra.dgp.solve import lengths_and_taut_sets
+    from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 
     robot, hom = dgp_run(name)  # the homotopy DGP of tests/test_dgp_seed000.py (same worker: xdist_group)
     rho, sets = lengths_and_taut_sets(robot, None, 6)

@@ -80,7 +80,7 @@ from fractions import Fraction
 import numba as nb
 import numpy as np
 
-from cdpr_algebra.dgp.solve import solve_each_taut_set
+from cdpr_algebra.model.taut_sets import solve_each_taut_set
 from cdpr_algebra.intervals.arithmetic import (Interval, QuadraticSystem, _float_inverse, _gamma, _midrad, enclose_fraction, inv_sqr,
                              mr_matmul, newton, s_add, s_div, s_down, s_fmax, s_fmin, s_inv_sqr, s_mid, s_midrad,
                              s_mr_radius, s_mul, s_sqr, s_sub, s_up, sq, stack, up)

@@ -33,7 +33,7 @@ set is attained, it is at a smooth critical point or at a singular point, so the
 global minimum.  A generic cubic has 21 critical points (the Euclidean distance degree d (1 + (d-1) + (d-1)^2)).
 
 **Homotopy.**  The family (parameters: the 20 coefficients of a cubic) is solved once for random complex
-coefficients c1 with the engine (:func:`.homotopy.tracker.track_paths`) from a 2-homogeneous linear-product start
+coefficients c1 with the engine (:func:`cdpr_algebra.homotopy.endgame.track_paths`) from a 2-homogeneous linear-product start
 system (36 paths: 21 solutions, 15 paths end on the spurious component y0 = lam = 0 at infinity), then every
 polynomial of interest is reached by the parameter homotopy c(t) = t c1 + (1 - t) c0 (coefficient-parameter
 homotopy: every isolated solution of the target in P^3 x P^1 is the end of one of the 21 paths).  All the
@@ -119,7 +119,7 @@ def evaluate_cubic(coefficients, y) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------------------------------------------------
-# The projective Lagrange system and its homotopies (duck-typed for homotopy.tracker.track_paths)
+# The projective Lagrange system and its homotopies (duck-typed for homotopy.endgame.track_paths)
 
 
 class _EDSystem:

@@ -1,4 +1,4 @@
-"""``cdpr cc``: cable configurations of a suspended robot with more than 6 cables (seed 002).
+"""``cdpr cc``: cable configurations of a suspended robot with more than 6 cables (Merlet).
 
     cdpr cc ROBOT --position X Y Z [--angles PX PY PZ [--degrees]] [--configuration C1 .. C6]
                   [--ball R] [--uncertainty DA DB DRHO] [--json]
@@ -34,28 +34,28 @@ from dataclasses import replace
 import numpy as np
 
 from cdpr_algebra.model.errors import CdprInputError
+
+from .common import finite
 from cdpr_algebra.report.jsonable import jsonable
 
 
 def add_parser(subparsers) -> None:
-    from .main import _finite
-
-    p = subparsers.add_parser("cc", help="cable configurations of a suspended robot with > 6 cables (seed 002)")
+    p = subparsers.add_parser("cc", help="cable configurations of a suspended robot with > 6 cables (Merlet)")
     p.add_argument("robot", help="robot file (.json or .toml)")
-    p.add_argument("--position", nargs=3, type=_finite("--position"), metavar=("X", "Y", "Z"),
+    p.add_argument("--position", nargs=3, type=finite("--position"), metavar=("X", "Y", "Z"),
                    help="position of the centre of mass G (world frame)")
-    p.add_argument("--angles", nargs=3, type=_finite("--angles"), metavar=("PHI_X", "PHI_Y", "PHI_Z"),
+    p.add_argument("--angles", nargs=3, type=finite("--angles"), metavar=("PHI_X", "PHI_Y", "PHI_Z"),
                    help="orientation R = Rz(phi_z) Ry(phi_y) Rx(phi_x), radians unless --degrees (default 0 0 0)")
     p.add_argument("--degrees", action="store_true", help="--angles in degrees")
     p.add_argument("--configuration", nargs="+", metavar="C", help="only this configuration (cable numbers)")
     p.add_argument("--trajectory", nargs=3, metavar=("EX", "EY", "EZ"),
                    help="position of G as expressions of t (polynomials in t, or in cos(t), sin(t))")
     p.add_argument("--surface", nargs=3, metavar=("EX", "EY", "EZ"), help="position of G as expressions of u, v")
-    p.add_argument("--range", nargs=2, type=_finite("--range"), action="append", metavar=("LO", "HI"),
+    p.add_argument("--range", nargs=2, type=finite("--range"), action="append", metavar=("LO", "HI"),
                    help="range of t (trajectory) or of u then v (surface, given twice)")
-    p.add_argument("--ball", type=_finite("--ball"), metavar="R",
+    p.add_argument("--ball", type=finite("--ball"), metavar="R",
                    help="second criterion: no sub-configuration equilibrium within this radius (pose only)")
-    p.add_argument("--uncertainty", nargs=3, type=_finite("--uncertainty"), metavar=("DA", "DB", "DRHO"),
+    p.add_argument("--uncertainty", nargs=3, type=finite("--uncertainty"), metavar=("DA", "DB", "DRHO"),
                    help="uncertainty criterion: +-DA on A, +-DB on b', +-DRHO on the lengths (pose only)")
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
 

@@ -23,13 +23,13 @@ import numpy as np
 
 from cdpr_algebra.model.errors import CdprInputError
 
+from .common import finite
+
 
 def add_parser(subparsers) -> None:
-    from .main import _finite
-
     p = subparsers.add_parser("crosscheck", help="compare the homotopy DGP with the interval branch and prune")
     p.add_argument("robot", help="robot file (.json or .toml)")
-    p.add_argument("--lengths", nargs="+", type=_finite("--lengths"), metavar="L",
+    p.add_argument("--lengths", nargs="+", type=finite("--lengths"), metavar="L",
                    help="cable lengths rho_1 .. rho_n (default: the robot file's)")
     p.add_argument("--taut", nargs="+", type=int, metavar="C", help="only this set of taut cables (numbers from 1)")
     p.add_argument("--max-m", type=int, default=6, metavar="M", help="largest number of taut cables (default 6)")

@@ -12,15 +12,15 @@ from pathlib import Path
 
 from cdpr_algebra.model.errors import CdprInputError
 
+from .common import dgp_lengths, finite
+
 SUFFIXES = (".png", ".svg")
 
 
 def add_parser(subparsers) -> None:
-    from .main import _finite
-
     p = subparsers.add_parser("plot", help="run the DGP and draw its admissible equilibria (PNG or SVG)")
     p.add_argument("robot", help="robot file (.json or .toml)")
-    p.add_argument("--lengths", nargs="+", type=_finite("--lengths"), metavar="L",
+    p.add_argument("--lengths", nargs="+", type=finite("--lengths"), metavar="L",
                    help="cable lengths rho_1 .. rho_n (default: the robot file's)")
     p.add_argument("--out", default=None, metavar="FILE",
                    help="output file, .png or .svg (default: <robot file stem>_equilibria.png)")
@@ -38,14 +38,13 @@ def output_path(out: str | None, robot_file: str) -> Path:
 
 
 def run(args) -> int:
-    from .main import _dgp_lengths
     from cdpr_algebra.dgp.solve import dgp, dgp_table
     from cdpr_algebra.report.plot import plot_equilibria
     from cdpr_algebra.model.robot import load_robot
 
     out = output_path(args.out, args.robot)
     robot = load_robot(args.robot)
-    lengths = _dgp_lengths(args, robot)
+    lengths = dgp_lengths(args, robot)
     if args.jobs is not None and args.jobs < 1:
         raise CdprInputError("--jobs", f"expected a number >= 1, got {args.jobs}")
 

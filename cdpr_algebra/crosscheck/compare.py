@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cdpr_algebra.dgp.solve import solve_each_taut_set
+from cdpr_algebra.model.taut_sets import solve_each_taut_set
 from cdpr_algebra.bp.solver import BPOptions, solve_taut_set_interval
 from cdpr_algebra.report.jsonable import jsonable
 

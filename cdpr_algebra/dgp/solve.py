@@ -64,16 +64,16 @@ from pathlib import Path
 import numpy as np
 
 from cdpr_algebra.model.taut_equations import decode, taut_family
+from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .one_cable import one_cable_equilibria
 from cdpr_algebra.homotopy.results import FAILURES, OUTCOMES, outcome_counts
 from cdpr_algebra.report.jsonable import jsonable
 from cdpr_algebra.model.pose import angles_from_matrix, rotation_taking
 from cdpr_algebra.model.stability import skew_stack, stability_classes
 
-__all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune",
-           "lengths_and_taut_sets", "solve_each_taut_set"]
+__all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune"]
 
-DATA = Path(__file__).resolve().parent / "data"
+DATA = Path(__file__).resolve().parents[1] / "data"
 REAL_TOL = 1e-6
 SLACK_TOL = 1e-9
 TENSION_RTOL = 1e-9
@@ -632,33 +632,6 @@ def _merge(solutions, L):
             continue
         out.append(s)
     return out
-
-
-def lengths_and_taut_sets(robot, lengths=None, max_m: int = 6):
-    """(rho, every 0-based taut set of m = 1 .. min(n, 6, max_m) cables): the subproblems of a DGP (also of the
-    interval cross-check); ``lengths`` default to the robot's."""
-    if lengths is None:
-        if robot.lengths is None:
-            raise ValueError("no cable lengths: give lengths= or a robot with lengths")
-        lengths = robot.lengths
-    rho = np.asarray(lengths, dtype=float)
-    if rho.shape != (robot.n,) or np.any(rho <= 0):
-        raise ValueError(f"expected {robot.n} positive cable lengths")
-    return rho, [c for m in range(1, min(robot.n, 6, max_m) + 1) for c in itertools.combinations(range(robot.n), m)]
-
-
-def solve_each_taut_set(robot, lengths, max_m, sets, solve_one, progress=None):
-    """(rho, [solve_one(rho, c) for every taut set c], seconds), one set after the other: over the 0-based
-    ``sets``, or every set of :func:`lengths_and_taut_sets`; ``progress(result, done, total)`` after each."""
-    t0 = time.perf_counter()
-    rho, every_set = lengths_and_taut_sets(robot, lengths, max_m)
-    sets = every_set if sets is None else sets
-    out = []
-    for k, c in enumerate(sets):
-        out.append(solve_one(rho, c))
-        if progress:
-            progress(out[-1], k + 1, len(sets))
-    return rho, out, time.perf_counter() - t0
 
 
 def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int = 6, seed: int = 0,

@@ -4,7 +4,7 @@ Flat topic modules, after HomotopyContinuation.jl:
 
 * :mod:`.systems` -- polynomial systems with parameters, compiled once into batched numpy evaluators;
 * :mod:`.homotopies` -- straight-line (gamma trick) and parameter homotopies;
-* :mod:`.tracker` -- vectorized RK4 / Newton path tracker, :func:`track_paths`;
+* :mod:`.tracker` -- vectorized RK4 / Newton path tracker of one segment, :func:`track_segment`;
 * :mod:`.endgame` -- Cauchy endgame, at-infinity test, Newton refinement, retries (double, mpmath);
 * :mod:`.start_systems` -- total degree, multi-homogeneous (linear product), parameter homotopy;
 * :mod:`.monodromy` -- generic solution sets from one seed point, saved/loaded instances;
@@ -14,8 +14,8 @@ Flat topic modules, after HomotopyContinuation.jl:
 
 from .systems import PolynomialSystem
 from .homotopies import ParameterHomotopy, StraightLineHomotopy
-from .tracker import TrackerOptions, track_paths, track_segment
-from .endgame import EndgameOptions, SolveOptions
+from .tracker import TrackerOptions, track_segment
+from .endgame import EndgameOptions, SolveOptions, track_paths
 from .start_systems import (multi_homogeneous, multi_homogeneous_bezout_number, bezout_number, parameter_homotopy,
                             total_degree)
 from .results import PathResult, Solution, SolveResult, Summary, TrackResult

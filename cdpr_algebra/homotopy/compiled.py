@@ -406,8 +406,8 @@ def track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xo
 def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
     """:func:`.tracker.track_segment` for a :class:`~.homotopies.ParameterHomotopy` whose system has compiled
     kernels (``homotopy.compiled_kernels()``); same arguments and :class:`~.tracker.SegmentResult`."""
-    from .results import DIVERGED as S_DIV, STEP_TOO_SMALL as S_SMALL, SUCCESS, TOO_MANY_STEPS as S_MANY
-    from .tracker import RUNNING as S_RUN, SegmentResult
+    from .results import (DIVERGED as S_DIV, RUNNING as S_RUN, STEP_TOO_SMALL as S_SMALL, SUCCESS,
+                          TOO_MANY_STEPS as S_MANY, SegmentResult)
 
     o = options
     kernels = homotopy.compiled_kernels()

@@ -1,6 +1,6 @@
 """Endgame, refinement and retries: from tracked paths to classified endpoints.
 
-Pipeline (:func:`run_pipeline`, used by :func:`~.tracker.track_paths`), all vectorized across paths:
+Pipeline (:func:`run_pipeline`, used by :func:`track_paths`), all vectorized across paths:
 
 1. track t = 1 -> ``endgame_start`` (0.1). Paths that fail are retried with tighter double-precision
    settings, then by a scalar mpmath tracker (``mp_dps`` digits) before being reported failed.
@@ -31,17 +31,18 @@ Everything is deterministic: randomness lives only in the start systems (seeded)
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field, asdict, replace
 
 import numpy as np
 
 from .clusters import linked_groups
 from .results import (AT_INFINITY, DIVERGED, ENDGAME_FAILED, FAILURES, SINGULAR, STEP_TOO_SMALL, SUCCESS,
-                      TOO_MANY_STEPS, PathResult)
+                      TOO_MANY_STEPS, PathResult, TrackResult)
 from .tracker import TrackerOptions, _norm, _solve, track_segment
 
 __all__ = ["EndgameOptions", "SolveOptions", "run_pipeline", "refine", "cauchy_endgame", "decide_in_chart", "mp_track",
-           "mp_path"]
+           "mp_path", "track_paths"]
 
 
 @dataclass(frozen=True)
@@ -641,3 +642,15 @@ def run_pipeline(homotopy, X0, opts: SolveOptions):
                 if fin[i].status == SUCCESS:
                     paths[fin[i].index] = replace(fin[i], status=SINGULAR)
     return paths
+
+
+def track_paths(homotopy, start_solutions, options=None, seed=None):
+    """Track every start solution of ``homotopy`` to t = 0, run the endgame and classify each path.
+
+    ``options`` is a :class:`SolveOptions` (or None for its defaults). Returns a
+    :class:`.results.TrackResult`. See :func:`run_pipeline` for the pipeline.
+    """
+    options = options or SolveOptions()
+    t0 = time.perf_counter()
+    paths = run_pipeline(homotopy, np.asarray(start_solutions, dtype=complex), options)
+    return TrackResult(paths=tuple(paths), seconds=time.perf_counter() - t0, seed=seed, options=options.to_dict())

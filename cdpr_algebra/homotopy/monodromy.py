@@ -31,7 +31,7 @@ from .endgame import SolveOptions
 from .homotopies import ParameterHomotopy
 from .results import SUCCESS
 from .systems import PolynomialSystem
-from .tracker import track_paths
+from .endgame import track_paths
 
 __all__ = ["MonodromyOptions", "MonodromyResult", "seed_instance", "monodromy_solve", "save_instance",
            "load_instance", "FORMAT_VERSION"]

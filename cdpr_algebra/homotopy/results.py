@@ -23,7 +23,24 @@ from typing import Optional
 
 import numpy as np
 
-from cdpr_algebra.report.jsonable import jsonable as _jsonable
+
+
+def complex_list(a) -> list:
+    """A complex vector as JSON-ready [[re, im], ...] (the engine's records carry no other array)."""
+    return [[float(z.real), float(z.imag)] for z in np.asarray(a, dtype=complex).ravel()]
+
+
+def _number(v):
+    """A float, int, bool, complex ([re, im]) or None field as a JSON-ready value."""
+    if v is None or isinstance(v, (bool, np.bool_)):
+        return None if v is None else bool(v)
+    if isinstance(v, (complex, np.complexfloating)):
+        return [float(v.real), float(v.imag)]
+    if isinstance(v, (int, np.integer)):
+        return int(v)
+    if isinstance(v, (float, np.floating)):
+        return float(v)
+    return v
 
 SUCCESS = "success"
 SINGULAR = "singular"
@@ -90,7 +107,9 @@ class PathResult:
         return bool(np.all(np.abs(self.endpoint.imag) <= tol * (1 + np.abs(self.endpoint.real))))
 
     def to_dict(self) -> dict:
-        return _jsonable(asdict(self))
+        d = {k: _number(v) for k, v in asdict(self).items() if k != "endpoint"}
+        d["endpoint"] = complex_list(self.endpoint)
+        return d
 
 
 @dataclass(frozen=True)
@@ -157,7 +176,7 @@ class TrackResult:
         return summary_line(self.summary())
 
     def to_dict(self) -> dict:
-        return {"summary": self.summary().to_dict(), "options": _jsonable(self.options),
+        return {"summary": self.summary().to_dict(), "options": _plain_options(self.options),
                 "paths": [p.to_dict() for p in self.paths]}
 
 
@@ -189,7 +208,18 @@ class Solution:
         return bool(np.all(np.abs(self.x.imag) <= tol * (1 + np.abs(self.x.real))))
 
     def to_dict(self) -> dict:
-        return _jsonable(asdict(self))
+        return {"x": complex_list(self.x), "multiplicity": int(self.multiplicity), "singular": bool(self.singular),
+                "residual": float(self.residual), "condition": float(self.condition),
+                "accuracy": float(self.accuracy), "paths": [int(i) for i in self.paths]}
+
+
+def _plain_options(v):
+    """Options (nested dicts of numbers, strings, tuples) as JSON-ready values."""
+    if isinstance(v, dict):
+        return {k: _plain_options(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_plain_options(x) for x in v]
+    return _number(v)
 
 
 @dataclass(frozen=True)
@@ -225,3 +255,18 @@ class SolveResult:
     def to_dict(self) -> dict:
         return {"start_system": self.start_system, "summary": self.summary().to_dict(),
                 "solutions": [s.to_dict() for s in self.solutions], "track": self.track.to_dict()}
+
+
+RUNNING = ""  # status of a path still being tracked (inside one segment)
+
+
+@dataclass
+class SegmentResult:
+    """Arrays over the paths of one :func:`track_segment` call."""
+
+    x: np.ndarray  # (N, n) last point
+    s: np.ndarray  # (N,) fraction of the segment reached
+    t: np.ndarray  # (N,) complex t reached
+    status: np.ndarray  # (N,) object: SUCCESS or a failure code
+    steps: np.ndarray  # (N,) int
+    h: np.ndarray  # (N,) last step (fraction of the segment)

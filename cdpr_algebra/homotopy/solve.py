@@ -25,7 +25,7 @@ from .results import FAILURES, PATH_JUMPING, SINGULAR, SUCCESS, Solution, SolveR
 from .homotopies import ParameterHomotopy
 from .start_systems import multi_homogeneous, parameter_homotopy, random_gamma, total_degree
 from .systems import PolynomialSystem
-from .tracker import track_paths
+from .endgame import track_paths
 
 __all__ = ["solve", "solve_parameter_homotopy", "group_solutions"]
 

@@ -54,7 +54,7 @@ from .endgame import SolveOptions, duplicate_groups
 from .homotopies import ParameterHomotopy
 from .monodromy import MonodromyOptions, monodromy_solve
 from .results import STATUSES, SUCCESS
-from .tracker import track_paths
+from .endgame import track_paths
 
 __all__ = ["TraceSliceSystem", "TracePencilSystem", "TraceTestOptions", "TraceResult", "TraceTestResult",
            "distinct_points", "trace_witnesses", "complete_witnesses", "polish", "compute_trace", "verify_solution_completeness", "random_direction"]

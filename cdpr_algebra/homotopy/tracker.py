@@ -22,24 +22,18 @@ the Newton factors for the next k1, so its error estimates and step counts diffe
 leave the active set. Failures: ``step_too_small`` (h < ``min_step``), ``too_many_steps``,
 ``diverged`` (|x| > ``max_norm`` or a non-finite value).
 
-:func:`track_paths` runs the whole pipeline (tracking, endgame, refinement, retries, path-jumping
-check); it is in this module so that ``track_paths(homotopy, start_solutions, options)`` is the one
-entry point, and delegates to :mod:`.endgame`.
+:func:`.endgame.track_paths` runs the whole pipeline (tracking, endgame, refinement, retries, path-jumping check).
 """
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass, asdict, replace
 
 import numpy as np
 
-from .results import DIVERGED, STEP_TOO_SMALL, SUCCESS, TOO_MANY_STEPS
+from .results import DIVERGED, RUNNING, STEP_TOO_SMALL, SUCCESS, TOO_MANY_STEPS, SegmentResult
 
-__all__ = ["TrackerOptions", "SegmentResult", "track_segment", "track_paths"]
-
-RUNNING = ""
-
+__all__ = ["TrackerOptions", "track_segment"]
 
 @dataclass(frozen=True)
 class TrackerOptions:
@@ -77,18 +71,6 @@ class TrackerOptions:
 
     def to_dict(self) -> dict:
         return asdict(self)
-
-
-@dataclass
-class SegmentResult:
-    """Arrays over the paths of one :func:`track_segment` call."""
-
-    x: np.ndarray  # (N, n) last point
-    s: np.ndarray  # (N,) fraction of the segment reached
-    t: np.ndarray  # (N,) complex t reached
-    status: np.ndarray  # (N,) object: SUCCESS or a failure code
-    steps: np.ndarray  # (N,) int
-    h: np.ndarray  # (N,) last step (fraction of the segment)
 
 
 def _norm(v):
@@ -196,19 +178,3 @@ def track_segment(homotopy, x0, t_a, t_b, options: TrackerOptions | None = None,
         active = a[status[a] == RUNNING]
     t = t_a + s * dt
     return SegmentResult(x=x, s=s, t=t, status=status, steps=steps, h=h)
-
-
-def track_paths(homotopy, start_solutions, options=None, seed=None):
-    """Track every start solution of ``homotopy`` to t = 0, run the endgame and classify each path.
-
-    ``options`` is a :class:`~.endgame.SolveOptions` (or None for its defaults). Returns a
-    :class:`.results.TrackResult`. See :func:`.endgame.run_pipeline` for the pipeline.
-    """
-    from .endgame import SolveOptions, run_pipeline
-
-    options = options or SolveOptions()
-    t0 = time.perf_counter()
-    paths = run_pipeline(homotopy, np.asarray(start_solutions, dtype=complex), options)
-    from .results import TrackResult
-
-    return TrackResult(paths=tuple(paths), seconds=time.perf_counter() - t0, seed=seed, options=options.to_dict())

@@ -1,0 +1,48 @@
+"""Helpers shared by the command modules: the parser class (one-line errors, exit status 2), number arguments,
+the DGP's cable lengths, and the exit status of an incomplete result."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+import numpy as np
+
+from cdpr_algebra.model.errors import CdprInputError
+
+__all__ = ["INCOMPLETE", "Parser", "finite", "dgp_lengths"]
+
+INCOMPLETE = 3  # exit status: a result not proven complete (failed paths, uncertified endpoints), said on stderr
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse with a one-line error message and exit status 2."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def finite(name):
+    """argparse type: a finite float; the error names the flag ``name``."""
+    def conv(text):
+        try:
+            v = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{name}: expected a number, got {text!r}") from None
+        if not math.isfinite(v):
+            raise argparse.ArgumentTypeError(f"{name}: expected a finite number, got {text!r}")
+        return v
+    return conv
+
+
+def dgp_lengths(args, robot) -> np.ndarray:
+    """The DGP's cable lengths: ``--lengths`` (checked) or the robot file's (used by dgp, plot and crosscheck)."""
+    if args.lengths is not None:
+        if len(args.lengths) != robot.n:
+            raise CdprInputError("--lengths", f"expected {robot.n} cable lengths, got {len(args.lengths)}")
+        if any(v <= 0 for v in args.lengths):
+            raise CdprInputError("--lengths", "cable lengths must be > 0")
+        return np.array(args.lengths)
+    if robot.lengths is not None:
+        return robot.lengths
+    raise CdprInputError("--lengths", "no cable lengths: the robot file has none and --lengths is not given")

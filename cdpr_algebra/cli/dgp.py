@@ -1,0 +1,63 @@
+"""``cdpr dgp``: every equilibrium of the robot at its cable lengths, every set of taut cables (Berti, Merlet and
+Carricato 2016), by parameter homotopies; exit status 3 when a subproblem is not proven complete."""
+
+from __future__ import annotations
+
+import json
+import sys
+
+from cdpr_algebra.model.errors import CdprInputError
+
+from .common import INCOMPLETE, dgp_lengths, finite
+
+
+def add_parser(subparsers) -> None:
+    dgp = subparsers.add_parser("dgp", help="direct geometrico-static problem: every equilibrium, every set of taut cables")
+    dgp.add_argument("robot", help="robot file (.json or .toml)")
+    dgp.add_argument("--lengths", nargs="+", type=finite("--lengths"), metavar="L",
+                     help="cable lengths rho_1 .. rho_n (default: the robot file's)")
+    dgp.add_argument("--jobs", type=int, default=None, help="parallel threads (default: all cores)")
+    dgp.add_argument("--mpmath-retry", action="store_true",
+                     help="track up to 4 paths per subproblem that fail in double precision again in arbitrary "
+                          "precision (slow: seconds to minutes per path)")
+    dgp.add_argument("--json", action="store_true", help="print JSON instead of a table")
+
+
+def run(args) -> int:
+    from cdpr_algebra.dgp.solve import dgp, dgp_table, incompleteness
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot(args.robot)
+    lengths = dgp_lengths(args, robot)
+    if args.jobs is not None and args.jobs < 1:
+        raise CdprInputError("--jobs", f"expected a number >= 1, got {args.jobs}")
+
+    def progress(sub, done, total):
+        o = sub.outcomes
+        what = f"skipped ({sub.skipped})" if sub.skipped else \
+            (f"{sub.paths} paths ({o['regular']} regular, {o['singular']} singular, {o['at_infinity']} at infinity, "
+             f"{o['failed']} failed), {sub.real} real, {sub.admissible} admissible")
+        print(f"[{done}/{total}] taut {list(sub.taut)}: {what}, {sub.seconds:.2f} s", file=sys.stderr, flush=True)
+
+    options = None
+    if args.mpmath_retry:
+        from dataclasses import replace
+
+        from cdpr_algebra.dgp.solve import default_options
+
+        options = replace(default_options(), retry_mpmath=True)
+    result = dgp(robot, lengths, jobs=args.jobs, progress=progress, options=options)
+    if args.json:
+        print(json.dumps(result.to_dict(), indent=2))
+    else:
+        print(f"{robot.name}: DGP, lengths {', '.join(f'{v:g}' for v in lengths)}")
+        print(dgp_table(result, robot.n))
+    if not result.complete:
+        print(f"cdpr: incomplete: {len(result.incomplete)} subproblem(s) not proven complete, so equilibria may be "
+              f"missing there (exit status 3):", file=sys.stderr)
+        for s in result.incomplete:
+            print(f"  {list(s.taut)}: {incompleteness(s)}", file=sys.stderr)
+        if any(s.failed_paths for s in result.incomplete):
+            print("  (--mpmath-retry tracks up to 4 failed paths per subproblem in arbitrary precision)", file=sys.stderr)
+        return INCOMPLETE
+    return 0
