@@ -23,7 +23,7 @@ sys.path.insert(0, str(ROOT))
 
 import numpy as np  # noqa: E402
 
-from cdpr_algebra import cc_radii  # noqa: E402
+from cdpr_algebra.cc import cubic_distances  # noqa: E402
 from cdpr_algebra.cc.radii import cc_radii_many  # noqa: E402
 from cdpr_algebra.cc.configurations import valid_configurations  # noqa: E402
 from cdpr_algebra.model.robot import load_robot  # noqa: E402
@@ -33,7 +33,7 @@ POSES = [(0.0, 1.0, 2.0), (1.0, 0.0, 2.0)]
 
 def table(robot, cold: bool):
     if cold:
-        cc_radii._GENERIC.clear()
+        cubic_distances._GENERIC.clear()
     reqs = [(p, c.cables) for p in POSES for c in valid_configurations(robot, p, sizes=[6])]
     return cc_radii_many(robot, reqs, certify=True)
 

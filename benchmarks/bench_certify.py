@@ -19,7 +19,7 @@ import numpy as np
 from flint import arb, arb_mat
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.certify.equilibria import certify_dgp_solutions, taut_system, with_certificates
+from cdpr_algebra.certificates.equilibria import certify_dgp_solutions, taut_system, with_certificates
 from cdpr_algebra.dgp.solve import dgp, solve_taut_set
 from cdpr_algebra.model.taut_equations import encode
 from cdpr_algebra.igp.position import igp_position

@@ -24,7 +24,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
-from cdpr_algebra.bp.solver import interval_dgp, solve_taut_set_interval  # noqa: E402
+from cdpr_algebra.bp.search import interval_dgp, solve_taut_set_interval  # noqa: E402
 from cdpr_algebra.model.robot import load_robot  # noqa: E402
 
 # name: (published seconds, published counts by m, homotopy admissible counts by m)

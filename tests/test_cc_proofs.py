@@ -15,7 +15,9 @@ import pytest
 from cdpr_algebra.cc import radii as radii_mod
 from cdpr_algebra.cc import safety as safety_mod
 from cdpr_algebra import load_robot
-from cdpr_algebra.cc.radii import MONOMIALS, arb_cubic, cc_radii, exclude_critical_points, prove_nearest
+from cdpr_algebra.cc.cubic_distances import MONOMIALS
+from cdpr_algebra.cc.radii import cc_radii
+from cdpr_algebra.cc.radius_proofs import arb_cubic, exclude_critical_points, prove_nearest
 from cdpr_algebra.cc.safety import PROOF, SEARCH, distance_upper_bound, pose_distance, safety
 from cdpr_algebra.cli.main import main
 

@@ -15,7 +15,7 @@ import pytest
 from flint import arb
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.certify.equilibria import (BOX_RTOL, certify_dgp_solutions, certify_igp_orientation, certify_taut_root,
+from cdpr_algebra.certificates.equilibria import (BOX_RTOL, certify_dgp_solutions, certify_igp_orientation, certify_taut_root,
                                   taut_system)
 from cdpr_algebra.dgp.solve import dgp, solve_taut_set
 from cdpr_algebra.model.taut_equations import taut_family

@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 from cdpr_algebra import Robot, load_robot
-from cdpr_algebra.cc.radii import (ED_DEGREE, MONOMIALS, _generic, cc_polynomials, cc_radii, cc_radii_many,
-                                   distance_to_cubics, evaluate_cubic)
+from cdpr_algebra.cc.cubic_distances import ED_DEGREE, MONOMIALS, _generic, distance_to_cubics, evaluate_cubic
+from cdpr_algebra.cc.radii import cc_polynomials, cc_radii, cc_radii_many
 from cdpr_algebra.cc.configurations import configuration_tensions, valid_configurations
 from cdpr_algebra.model.errors import CdprInputError
 

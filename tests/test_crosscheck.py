@@ -11,9 +11,9 @@ from dataclasses import fields, replace
 import numpy as np
 import pytest
 
-from cdpr_algebra.crosscheck import compare as cc_mod
+from cdpr_algebra.comparison import compare as cc_mod
 from cdpr_algebra.cli.main import main
-from cdpr_algebra.crosscheck.compare import CrosscheckResult, compare_taut_set, crosscheck_table, exit_status, pruning_proof
+from cdpr_algebra.comparison.compare import CrosscheckResult, compare_taut_set, crosscheck_table, exit_status, pruning_proof
 from cdpr_algebra.dgp.solve import prune, solve_taut_set
 from cdpr_algebra.model.robot import Robot, load_robot
 

@@ -10,9 +10,12 @@ import numpy as np
 import pytest
 
 import cdpr_algebra.intervals.arithmetic as ib
-from cdpr_algebra.intervals.arithmetic import Interval, QuadraticSystem, inv_sqr, krawczyk, mr_matmul
+import cdpr_algebra.intervals.operators as iop
+import cdpr_algebra.intervals.scalar_kernels as isk
+from cdpr_algebra.intervals.arithmetic import Interval, inv_sqr
+from cdpr_algebra.intervals.operators import QuadraticSystem, krawczyk, mr_matmul
 from cdpr_algebra.dgp.solve import available_m
-from cdpr_algebra.bp.solver import build_model, solve_taut_set_interval
+from cdpr_algebra.bp.search import build_model, solve_taut_set_interval
 from cdpr_algebra.model.pose import rotation_taking
 from cdpr_algebra.model.robot import Robot, load_robot
 from shared_runs import dgp_run
@@ -189,7 +192,7 @@ def test_model_equations_vanish_at_a_published_equilibrium_and_are_quadratic():
     x = np.concatenate([B.ravel(), lam])[None]
     F0 = np.stack(model.residual_float(list(x.T)), 1)
     assert np.max(np.abs(F0)) < 0.05  # printed digits
-    xs, conv, _ = ib.newton(model.residual_float, x)
+    xs, conv, _ = iop.newton(model.residual_float, x)
     assert conv[0] and np.max(np.abs(xs - x)[0, :9]) < 3e-3 and np.max(np.abs(xs - x)[0, 9:]) < 3e-4
     rng = np.random.default_rng(5)
     d = rng.standard_normal((3, model.h))
@@ -308,7 +311,7 @@ def test_seed000_test1_three_cables_reproduces_table1(test1_m3):
 
 @pytest.mark.slow
 def test_crosscheck_agrees_on_every_subproblem_of_test1(test1_m3):
-    from cdpr_algebra.crosscheck.compare import compare_taut_set, crosscheck_table, CrosscheckResult
+    from cdpr_algebra.comparison.compare import compare_taut_set, crosscheck_table, CrosscheckResult
 
     robot, sub3 = test1_m3
     comps = [compare_taut_set(robot, robot.lengths, c) for c in [(0,), (1,), (2,), (0, 1), (0, 2), (1, 2)]]
@@ -324,9 +327,9 @@ def test_crosscheck_agrees_on_every_subproblem_of_test1(test1_m3):
 
 def test_crosscheck_reports_a_disagreement_with_its_solutions():
     """A homotopy solution the interval side does not have (and vice versa) is listed, and agree is False."""
-    from cdpr_algebra.crosscheck.compare import _match
+    from cdpr_algebra.comparison.compare import _match
     from cdpr_algebra.dgp.solve import DGPSolution
-    from cdpr_algebra.bp.solver import IntervalSolution
+    from cdpr_algebra.bp.results import IntervalSolution
 
     robot = _test1()
     R = np.eye(3)
@@ -376,7 +379,7 @@ def _crosscheck_all_agree(name):
     one, no undecided box; nothing disagrees, and a subproblem is only left 'not compared' because the homotopy
     is incomplete there (failed paths or uncertified endpoints; issue 15: counted, not hidden); returns (robot, interval subproblems, interval
     admissible count by m)."""
-    from cdpr_algebra.crosscheck.compare import CrosscheckResult, compare_taut_set, crosscheck_table
+    from cdpr_algebra.comparison.compare import CrosscheckResult, compare_taut_set, crosscheck_table
     from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 
     robot, hom = dgp_run(name)  # the homotopy DGP of tests/test_dgp_seed000.py (same worker: xdist_group)
@@ -454,17 +457,17 @@ def test_compiled_scalar_operations_match_the_vectorized_ones():
     def apply(op, al, ah, bl, bh, ol, oh):
         for k in range(al.shape[0]):
             if op == 0:
-                ol[k], oh[k] = ib.s_add(al[k], ah[k], bl[k], bh[k])
+                ol[k], oh[k] = isk.s_add(al[k], ah[k], bl[k], bh[k])
             elif op == 1:
-                ol[k], oh[k] = ib.s_sub(al[k], ah[k], bl[k], bh[k])
+                ol[k], oh[k] = isk.s_sub(al[k], ah[k], bl[k], bh[k])
             elif op == 2:
-                ol[k], oh[k] = ib.s_mul(al[k], ah[k], bl[k], bh[k])
+                ol[k], oh[k] = isk.s_mul(al[k], ah[k], bl[k], bh[k])
             elif op == 3:
-                ol[k], oh[k] = ib.s_div(al[k], ah[k], bl[k], bh[k])
+                ol[k], oh[k] = isk.s_div(al[k], ah[k], bl[k], bh[k])
             elif op == 4:
-                ol[k], oh[k] = ib.s_sqr(al[k], ah[k])
+                ol[k], oh[k] = isk.s_sqr(al[k], ah[k])
             else:
-                ol[k], oh[k] = ib.s_inv_sqr(bl[k], bh[k], al[k], ah[k])
+                ol[k], oh[k] = isk.s_inv_sqr(bl[k], bh[k], al[k], ah[k])
 
     rng = np.random.default_rng(21)
     n = 4000
@@ -488,7 +491,7 @@ def test_compiled_exact_difference_encloses_and_is_a_point_when_exact():
     @nb.njit(error_model="numpy")
     def apply(x, y, lo, hi):
         for k in range(x.shape[0]):
-            lo[k], hi[k] = ib.s_sub_exact(x[k], y[k])
+            lo[k], hi[k] = isk.s_sub_exact(x[k], y[k])
 
     rng = np.random.default_rng(22)
     x = _random_floats(rng, 3000)
@@ -519,7 +522,7 @@ def _known_solution(model, robot, position, angles, tensions):
         local = T.T @ (pts[model.plat_ids[p]] - origin)
         core += [local[c] for c in range(3) if 3 * p + c not in model.pinned]
     core += [tensions[c] / robot.lengths[c] for c in model.cables]
-    xs, conv, _ = ib.newton(model.residual_float, np.array([core]))
+    xs, conv, _ = iop.newton(model.residual_float, np.array([core]))
     assert conv[0]
     full = np.zeros(model.ncols)
     P = model.points_float(xs)
@@ -549,7 +552,8 @@ def test_compiled_filter_and_taylor_operators_keep_a_known_equilibrium(case):
     """Boxes around an equilibrium (Tables 1-3 rows polished on the model's equations; for m = 2 a robot built
     around one): the compiled filter never empties them and the contracted boxes and the compiled second-order
     operator's X cap T(X) still hold it (both kernel orders; the vectorized filter as a reference)."""
-    import cdpr_algebra.bp.solver as bp
+    from cdpr_algebra.bp.contractors import contract
+    from cdpr_algebra.bp.results import BPOptions
 
     if case == "planar":
         robot, R, lam = _two_cable_robot(3)  # both tensions positive
@@ -566,14 +570,9 @@ def test_compiled_filter_and_taylor_operators_keep_a_known_equilibrium(case):
     rng = np.random.default_rng(7)
     lo, hi = _boxes_around(model, full, rng, 300)
     tol = 1e-9 * model.L
-    opts = bp.BPOptions()
     for kernels, order in (("compiled", 1), ("compiled", 0), ("numpy", 1)):
-        old = bp.KERNELS, bp.ORDER
-        bp.KERNELS, bp.ORDER = kernels, order
-        try:
-            cl, ch = bp.contract(model, lo.copy(), hi.copy(), opts)
-        finally:
-            bp.KERNELS, bp.ORDER = old
+        opts = BPOptions(kernels=kernels, filter_order=order)
+        cl, ch = contract(model, lo.copy(), hi.copy(), opts)
         assert len(cl) == len(lo), (kernels, order)
         assert np.all(cl <= full + tol) and np.all(ch >= full - tol), (kernels, order)
     core = model.core_cols
@@ -594,12 +593,14 @@ def test_compiled_filter_is_at_least_as_tight_as_the_vectorized_one():
     """On a batch of boxes of a branch and prune of seed 000 Test 3 (5 taut cables), the compiled filter in the
     vectorized order (each projection applied at once instead of simultaneously) keeps no box that the vectorized
     filter empties, and its boxes lie in the vectorized filter's ones up to rounding."""
-    import cdpr_algebra.bp.solver as bp
+    from cdpr_algebra.bp.contractors import contract_vectorized
+    from cdpr_algebra.bp.kernels import _contract_kernel
+    from cdpr_algebra.bp.results import BPOptions
 
     robot = load_robot(ROOT / "examples" / "seed000_test3.toml")
     model = build_model(robot, robot.lengths, (0, 1, 2, 3, 4))
     lo, hi = model.initial_box()
-    opts = bp.BPOptions(max_sweeps=2)
+    opts = BPOptions(max_sweeps=2)
     rng = np.random.default_rng(3)
     cols = model.bisect_cols
     for _ in range(9):  # random bisections of the widest pose variables: a batch of 512 boxes
@@ -611,11 +612,11 @@ def test_compiled_filter_is_at_least_as_tight_as_the_vectorized_one():
         lo[r, k] = mid
         lo, hi = np.vstack([lo, l2]), np.vstack([hi, h2])
     vl, vh = lo.copy(), hi.copy()
-    alive_v = bp.contract_vectorized(model, vl, vh, opts)
+    alive_v = contract_vectorized(model, vl, vh, opts)
     lc, hc = lo.copy(), hi.copy()
     rel, n_pt, use_n, sph, dst, chir, rows, gauss = model.compiled_data()
-    alive = bp._contract_kernel(lc, hc, model.core_cols.astype(np.int64), model.core_scale, 2, 0.1, rel, n_pt, use_n,
-                                sph, dst, chir, rows, gauss, True, 0)
+    alive = _contract_kernel(lc, hc, model.core_cols.astype(np.int64), model.core_scale, 2, 0.1, rel, n_pt, use_n,
+                            sph, dst, chir, rows, gauss, True, 0)
     assert 20 < alive_v.sum() < len(lo) and not np.any(alive & ~alive_v)
     both = alive & alive_v
     tol = 1e-9 * np.maximum(1.0, np.abs(vl[both]))
@@ -625,17 +626,12 @@ def test_compiled_filter_is_at_least_as_tight_as_the_vectorized_one():
 def test_compiled_and_vectorized_solvers_find_the_same_equilibria():
     """A 5-cable subproblem of seed 000 Test 2 (3 equilibria, two printed in Table 2) solved with the compiled and
     with the vectorized operators: the same proven equilibria, both searches complete."""
-    import cdpr_algebra.bp.solver as bp
+    from cdpr_algebra.bp.results import BPOptions
 
     robot = load_robot(ROOT / "examples" / "seed000_test2.toml")
     subs = {}
     for kernels in ("numpy", "compiled"):
-        old = bp.KERNELS
-        bp.KERNELS = kernels
-        try:
-            subs[kernels] = solve_taut_set_interval(robot, robot.lengths, (0, 1, 3, 4, 5))
-        finally:
-            bp.KERNELS = old
+        subs[kernels] = solve_taut_set_interval(robot, robot.lengths, (0, 1, 3, 4, 5), BPOptions(kernels=kernels))
     a, b = subs["numpy"], subs["compiled"]
     assert a.complete and b.complete and a.admissible == b.admissible == 3
     for s, t in zip(a.solutions, b.solutions):

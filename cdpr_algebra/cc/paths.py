@@ -38,7 +38,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import sympy as sp
 
-from .radii import MONOMIALS, INFINITY_Y0, LABEL_SCALE, _polynomials_batch, _track_batch, cc_radii_many
+from .cubic_distances import MONOMIALS, INFINITY_Y0, LABEL_SCALE, track_batch
+from .radii import polynomials_batch, cc_radii_many
 from .configurations import check_pose, configuration_tensions, parse_cables, valid_configurations
 from cdpr_algebra.model.errors import CdprInputError
 from cdpr_algebra.report.jsonable import jsonable
@@ -286,7 +287,7 @@ class _Family:
         Y0 = to_chart(X, self.chart)
         gamma = np.exp(2j * np.pi * rng.random())
         hom = _ChartStart(self.Fh, degs, p1, gamma)
-        xend, status = _track_batch(hom, Y0, self.seed, at_infinity=self._at_inf)
+        xend, status = track_batch(hom, Y0, self.seed, at_infinity=self._at_inf)
         good = (status == "success") & ~self._at_inf(xend)
         S = xend[good]
         # distinct
@@ -307,7 +308,7 @@ class _Family:
             X0 = np.concatenate([np.tile(S, (len(idx), 1)), np.repeat((idx - lo) / LABEL_SCALE, len(S))[:, None]],
                                 axis=1)
             hom = _LabelledParameterHomotopy(self.Fh, p1, P0[idx])
-            xend, status = _track_batch(hom, X0, self.seed, at_infinity=lambda z: self._at_inf(z[:, :-1]))
+            xend, status = track_batch(hom, X0, self.seed, at_infinity=lambda z: self._at_inf(z[:, :-1]))
             for j, k in enumerate(idx):
                 sl = slice(j * len(S), (j + 1) * len(S))
                 z, st = xend[sl, :-1], status[sl]
@@ -481,7 +482,7 @@ def crossings(robot, spec: PathSpec, cables, rotation=None, scale=None) -> list:
     mid = [0.5 * (a + b) for a, b in spec.ranges]
     center = spec.point(*mid)
     h = robot.size / 10.0 if scale is None else scale
-    coef, _ = _polynomials_batch(robot, [center], [R], [tuple(cables)], h)
+    coef, _ = polynomials_batch(robot, [center], [R], [tuple(cables)], h)
     phi, unknowns, _ = _path_exprs_scaled(spec, center, h)
     names = ["singular"] + list(cables)
     out = []
@@ -557,7 +558,7 @@ def _fix_parameter(expr, spec: PathSpec, unknowns, j, value):
 def _singular_points(C) -> list:
     """Real singular points (grad Q = 0 on Q = 0) of each cubic of C (K, 20): the mu = 0 endpoints of the pose
     distance homotopy of :mod:`cdpr_algebra.cc.radii` (any point would do as the pose; the origin is used)."""
-    from .radii import distance_to_cubics
+    from .cubic_distances import distance_to_cubics
 
     out = []
     for cd in distance_to_cubics(np.atleast_2d(C)):
@@ -653,7 +654,7 @@ def path_radii(robot, spec: PathSpec, cables, rotation=None, scale: float | None
             best[nm] = (d, where)
 
     if valid:
-        coef, _ = _polynomials_batch(robot, [center], [R], [cables], h)
+        coef, _ = polynomials_batch(robot, [center], [R], [cables], h)
         C = coef[0] / np.abs(coef[0]).max(axis=1)[:, None]
         phi, unknowns, circles = _path_exprs_scaled(spec, center, h)
         fam = _lagrange_family(phi, unknowns, circles, seed)

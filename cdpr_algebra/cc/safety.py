@@ -23,7 +23,7 @@ It is run when the exclusion fails (to decide) or on request (``nearest=True``).
 
 * ``safe = True``, method "interval exclusion proof": proven, no sub-configuration equilibrium within the radius.
 * ``safe = False``, method "homotopy search": a verified counterexample -- an equilibrium of a sub-configuration
-  certified by its interval certificate (:mod:`cdpr_algebra.certify.equilibria`: existence, uniqueness, positive tensions, slack cables)
+  certified by its interval certificate (:mod:`cdpr_algebra.certificates.equilibria`: existence, uniqueness, positive tensions, slack cables)
   whose distance to the pose, bounded from above in ball arithmetic over the certified box, is <= the radius.
 * ``safe = None`` otherwise: the homotopy search found no sub-configuration equilibrium within the radius (not a
   proof: the homotopy is a floating-point search), or found one it could not verify; ``status`` says which.

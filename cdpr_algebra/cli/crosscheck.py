@@ -6,10 +6,10 @@ Without ``--taut``: every set of m = 1 .. min(n, 6, M) taut cables; with it, tha
 Prints a table (one row per subproblem: both admissible counts, the interval solver's undecided boxes, agree /
 NO / not compared, times) followed by every disagreement with the solutions involved, every subproblem not
 compared with the reason, and a summary line counting agree / disagree / not compared; ``--json`` gives
-:meth:`cdpr_algebra.crosscheck.compare.CrosscheckResult.to_dict` (per subproblem ``"agree": true | false | null`` and ``"compared"``,
+:meth:`cdpr_algebra.comparison.compare.CrosscheckResult.to_dict` (per subproblem ``"agree": true | false | null`` and ``"compared"``,
 the reason).  Progress goes to stderr.
 
-Exit status (:func:`cdpr_algebra.crosscheck.compare.exit_status`): 0 when every subproblem was compared and agrees; 1 when some
+Exit status (:func:`cdpr_algebra.comparison.compare.exit_status`): 0 when every subproblem was compared and agrees; 1 when some
 subproblem disagrees; 3 when none disagrees but some subproblem was not compared (a solver skipped it or left it
 incomplete: homotopy failed paths, undecided interval boxes); 2 on bad input.
 """
@@ -37,7 +37,7 @@ def add_parser(subparsers) -> None:
 
 
 def run(args) -> int:
-    from cdpr_algebra.crosscheck.compare import crosscheck, crosscheck_table, exit_status
+    from cdpr_algebra.comparison.compare import crosscheck, crosscheck_table, exit_status
     from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(args.robot)

@@ -40,7 +40,7 @@ rho_i, rho_j of A_i, A_j: taut or slack); two taut cables also need |rho_i - rho
 real (imaginary parts <= 1e-6 in the normalized, unit-size coordinates); a proper rotation
 (|R^T R - I| <= 1e-6, det R > 0); tensions tau_i >= -tol with tol = 1e-9 Q; every other cable slack:
 |B_j - A_j| <= rho_j (1 + 1e-9).  Stability: class of the reduced Hessian (:mod:`cdpr_algebra.model.stability`), stable = '>'.
-**Certification** (:mod:`cdpr_algebra.certify.equilibria`): every admissible solution gets an interval certificate (Krawczyk:
+**Certification** (:mod:`cdpr_algebra.certificates.equilibria`): every admissible solution gets an interval certificate (Krawczyk:
 existence and uniqueness in a box of relative width <= 1e-9, tension signs, slack margins, Hessian class).
 
 **Deduplication rule.** An equilibrium is reported once, in the subproblem with the fewest taut cables:
@@ -143,7 +143,7 @@ class DGPSolution:
 class DGPSubproblem:
     """One taut set.  ``outcomes``: paths per outcome (regular, singular, at_infinity, failed; they add up to
     ``paths``); ``failures``: failed paths per reason; ``certified`` (``certified_real``): regular endpoints proven
-    to be distinct roots (real roots) by Krawczyk boxes that are pairwise disjoint (:func:`cdpr_algebra.certify.equilibria.certify_endpoints`;
+    to be distinct roots (real roots) by Krawczyk boxes that are pairwise disjoint (:func:`cdpr_algebra.certificates.equilibria.certify_endpoints`;
     None where no path was tracked), ``uncertified``: the others per reason; ``complete``: no path failed, the
     outcomes account for the generic count, and every regular endpoint is certified (or the set is proven empty by
     pruning, or solved analytically)."""
@@ -485,7 +485,7 @@ def _track(m, target, seed, gamma, options=None):
 
 def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, options=None):
     """(DGPSubproblem, [DGPSolution]) for the 0-based taut set ``cables`` (pruning, tracking, filtering, and
-    with ``certify`` an interval certificate for every admissible solution, :mod:`cdpr_algebra.certify.equilibria`); ``options``: the
+    with ``certify`` an interval certificate for every admissible solution, :mod:`cdpr_algebra.certificates.equilibria`); ``options``: the
     homotopy's :class:`.homotopy.endgame.SolveOptions` (default: those of the module doc)."""
     sub, sols, Z = _solve_and_certify_solutions(robot, rho, cables, seed, certify, options)
     (sub,) = _with_endpoint_certificates(robot, rho, [(cables, sub, Z)])
@@ -493,10 +493,10 @@ def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, opti
 
 
 def _certify_solutions(robot, rho, sols):
-    """The admissible solutions with their interval certificates (:func:`cdpr_algebra.certify.equilibria.certify_taut_root`)."""
+    """The admissible solutions with their interval certificates (:func:`cdpr_algebra.certificates.equilibria.certify_taut_root`)."""
     if not sols:
         return sols
-    from cdpr_algebra.certify.equilibria import certify_taut_root
+    from cdpr_algebra.certificates.equilibria import certify_taut_root
 
     return [s.with_certificate(certify_taut_root(robot, rho, [t - 1 for t in s.taut], s.position, s.rotation,
                                                  s.tensions[[t - 1 for t in s.taut]])) for s in sols]
@@ -589,10 +589,10 @@ def _world_coordinates(X, m, c, L, Rw, Q):
 
 def _with_endpoint_certificates(robot, rho, items) -> list:
     """The subproblems of ``items`` = [(0-based cables, DGPSubproblem, regular endpoints in world coordinates or
-    None)] with their endpoint certificates (one vectorized Krawczyk run per m, :func:`cdpr_algebra.certify.equilibria.certify_endpoints`)
+    None)] with their endpoint certificates (one vectorized Krawczyk run per m, :func:`cdpr_algebra.certificates.equilibria.certify_endpoints`)
     and ``complete`` decided: no failed path, outcomes adding up to the generic count, and every regular endpoint
     proven a distinct root (its box unique-root, disjoint from the others)."""
-    from cdpr_algebra.certify.equilibria import certify_endpoints
+    from cdpr_algebra.certificates.equilibria import certify_endpoints
 
     out = [sub for _, sub, _ in items]
     by_m = {}

@@ -22,7 +22,7 @@ import sympy as sp
 
 from cdpr_algebra.model.errors import CdprInputError
 from cdpr_algebra.generated import igp_orientation as gen
-from cdpr_algebra.certify.equilibria import with_certificates
+from cdpr_algebra.certificates.equilibria import with_certificates
 from .results import IGPResult, SolutionSet, make_solution
 from cdpr_algebra.model.pose import rotation_taking
 from cdpr_algebra.model.robot import Robot
@@ -395,7 +395,7 @@ def igp_orientation(robot: Robot, rotation, *, exact: bool = False, certify: boo
     set of Appendix A (line, curve, conic, crane) or an empty set.  ``exact=True`` reads the robot's numbers as
     exact rationals (see :func:`_rational`) and needs an exact rotation (sympy entries).  A numeric solution is
     Newton-polished and verified by its equilibrium residual; the message says how it was checked.
-    ``certify``: attach the interval certificate of :mod:`cdpr_algebra.certify.equilibria` to the solution (``certified``, ``certificate``).
+    ``certify``: attach the interval certificate of :mod:`cdpr_algebra.certificates.equilibria` to the solution (``certified``, ``certificate``).
 
     The solutions' ``hessian`` is the floating-point class of H_r (an estimate); the class the certificate proves is
     ``hessian_proven``, and the tables and JSON show that class or 'undecided' (:class:`cdpr_algebra.igp.results.IGPSolution`).

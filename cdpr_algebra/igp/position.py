@@ -62,7 +62,7 @@ from cdpr_algebra.model.errors import CdprInputError
 from cdpr_algebra.generated import dialytic as _gd
 from cdpr_algebra.generated import quartics as _gq
 from cdpr_algebra.model.pose import euler_parameters_from_matrix, matrix_from_euler_parameters
-from cdpr_algebra.certify.equilibria import with_certificates
+from cdpr_algebra.certificates.equilibria import with_certificates
 from .results import IGPResult, make_solutions
 from cdpr_algebra.model.robot import Robot
 
@@ -721,7 +721,7 @@ def igp_position(robot: Robot, com_position, *, include_complex: bool = True, fo
     Returns an :class:`IGPResult` (problem 'position') whose solutions come from :func:`make_solutions`, with
     ``euler_parameters`` (1, e1, e2, e3) or (0, e1, e2, e3) as found. Real solutions first. With
     ``include_complex=False`` only real solutions are returned (all 24 are still computed).  ``certify``: attach
-    the interval certificate of :mod:`cdpr_algebra.certify.equilibria` to every real solution (``certified``, ``certificate``).
+    the interval certificate of :mod:`cdpr_algebra.certificates.equilibria` to every real solution (``certified``, ``certificate``).
 
     The solutions' ``hessian`` is the floating-point class of H_r (an estimate); the class the certificate proves is
     ``hessian_proven``, and the tables and JSON show that class or 'undecided' (:class:`cdpr_algebra.igp.results.IGPSolution`).

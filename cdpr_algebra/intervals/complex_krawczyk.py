@@ -23,7 +23,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .arithmetic import Interval, krawczyk
+from .arithmetic import Interval
+from .operators import krawczyk
 
 __all__ = ["ComplexPair", "realified_jacobian", "ComplexRootBoxes", "certify_complex_roots", "overlapping"]
 

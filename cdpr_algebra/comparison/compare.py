@@ -1,5 +1,5 @@
 """Cross-check of the two DGP solvers (issue 8): homotopy continuation (:func:`cdpr_algebra.dgp.solve_taut_set`) against the
-interval branch and prune (:func:`cdpr_algebra.bp.solver.solve_taut_set_interval`), subproblem by subproblem.
+interval branch and prune (:func:`cdpr_algebra.bp.search.solve_taut_set_interval`), subproblem by subproblem.
 
 For each set of taut cables: the homotopy's admissible count (real, tensions >= 0, other cables slack), the
 interval solver's count of proven admissible solutions, its undecided boxes, and every disagreement with the
@@ -44,7 +44,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from cdpr_algebra.model.taut_sets import solve_each_taut_set
-from cdpr_algebra.bp.solver import BPOptions, solve_taut_set_interval
+from cdpr_algebra.bp.results import BPOptions
+from cdpr_algebra.bp.search import solve_taut_set_interval
 from cdpr_algebra.report.jsonable import jsonable
 
 __all__ = ["SubproblemComparison", "CrosscheckResult", "compare_taut_set", "crosscheck", "crosscheck_table",
@@ -230,7 +231,7 @@ def _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only, hwhy=N
 def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed: int = 0,
                      interval_result=None, homotopy_result=None) -> SubproblemComparison:
     """Both solvers on the 0-based taut set ``cables`` (rho: all n lengths) and their comparison
-    (``interval_result``: an :class:`cdpr_algebra.bp.solver.IntervalSubproblem` already computed for this set;
+    (``interval_result``: an :class:`cdpr_algebra.bp.results.IntervalSubproblem` already computed for this set;
     ``homotopy_result``: the pair (DGPSubproblem, its admissible DGPSolutions) of the homotopy DGP already
     computed for this set at these lengths, e.g. taken from a :func:`cdpr_algebra.dgp.solve.dgp` result)."""
     rho = np.asarray(rho, dtype=float)
