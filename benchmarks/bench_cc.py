@@ -1,6 +1,6 @@
-"""Wall times of the cable-configuration analysis of seed 002 (Merlet, 8-cable robot).
+"""Wall times of the cable-configuration analysis of Merlet's 8-cable robot (seed 002).
 
-    python benchmarks/bench_cc.py [--repeat 3] [--no-paths] [--no-second]
+    python -m benchmarks.bench_cc [--repeat 3] [--no-paths] [--no-second]
 
 * Sec. IV-B.1 table: valid CCs at (0,1,2) and (1,0,2) and every radius of every CC (8 CCs, 56 cubics, 48 distinct),
   certified; target <= 5 s (published: 8 min 26 s).  "cold" includes the one-time generic solve of the cubic
@@ -18,8 +18,8 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT / "benchmarks"), str(ROOT)]
 
 import numpy as np  # noqa: E402
 
@@ -27,6 +27,7 @@ from cdpr_algebra.cc import cubic_distances  # noqa: E402
 from cdpr_algebra.cc.radii import cc_radii_many  # noqa: E402
 from cdpr_algebra.cc.configurations import valid_configurations  # noqa: E402
 from cdpr_algebra.model.robot import load_robot  # noqa: E402
+from timing import machine, spread  # noqa: E402
 
 POSES = [(0.0, 1.0, 2.0), (1.0, 0.0, 2.0)]
 
@@ -57,12 +58,12 @@ def main():
     ap.add_argument("--no-second", action="store_true")
     args = ap.parse_args()
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
+    print(machine())
 
     med, times, res, cpu = timed(lambda: table(robot, cold=True), args.repeat)
-    print(f"Sec. IV-B.1 table, cold (generic solve included): median {med:.2f} s of {[round(t, 2) for t in times]}"
-          f" (CPU {cpu:.2f} s)")
+    print(f"Sec. IV-B.1 table, cold (generic solve included): {spread(times)} (CPU {cpu:.2f} s)")
     med, times, res, cpu = timed(lambda: table(robot, cold=False), args.repeat)
-    print(f"Sec. IV-B.1 table, warm: median {med:.2f} s of {[round(t, 2) for t in times]} (CPU {cpu:.2f} s)")
+    print(f"Sec. IV-B.1 table, warm: {spread(times)} (CPU {cpu:.2f} s)")
     for r in res:
         print(f"  {[c + 1 for c in r.cables]} at {r.position.tolist()}: r_min {r.rmin:.12g} "
               f"({'singular' if r.limiting == 'singular' else r.limiting + 1}), certified {r.certified}, "
@@ -72,8 +73,7 @@ def main():
 
     med, times, u, cpu = timed(lambda: uncertainty_check(robot, POSES[0], (2, 3, 4, 5, 6, 7), None, 0.005, 0.001,
                                                          0.005), args.repeat)
-    print(f"Sec. IV-D uncertainty, CC [3..8] at (0,1,2), 5/1/5 mm: median {med:.2f} s of "
-          f"{[round(t, 2) for t in times]} (CPU {cpu:.2f} s): robust {u.robust}, {u.boxes} boxes, tension bounds "
+    print(f"Sec. IV-D uncertainty, CC [3..8] at (0,1,2), 5/1/5 mm: {spread(times)} (CPU {cpu:.2f} s): robust {u.robust}, {u.boxes} boxes, tension bounds "
           f"{np.round(u.tension_bounds, 4).tolist()}")
 
     if not args.no_second:
@@ -85,7 +85,7 @@ def main():
             for c in valid_configurations(robot, p, sizes=[6]):
                 ok, boxes, _ = exclusion_proof(robot, p, c.cables, radius=0.03)
                 out.append((c.numbers, ok, boxes))
-        print(f"second criterion (interval exclusion, R = 0.03), 8 CCs: {time.perf_counter() - t:.2f} s: {out}")
+        print(f"second criterion (interval exclusion, R = 0.03), 8 CCs: {time.perf_counter() - t:.2f} s (one run): {out}")
 
     if not args.no_paths:
         from cdpr_algebra.cc.paths import parse_path, path_radii
@@ -95,7 +95,7 @@ def main():
             t = time.perf_counter()
             pr = path_radii(robot, parse_path(exprs, [rng]), (2, 3, 4, 5, 6, 7))
             print(f"Sec. IV-C {exprs} over {rng}: index {pr.index:.15g} ({pr.where.get('source')}), "
-                  f"{time.perf_counter() - t:.2f} s")
+                  f"{time.perf_counter() - t:.2f} s (one run)")
 
 
 if __name__ == "__main__":

@@ -1,7 +1,7 @@
 """Wall time of the complete DGP (every set of taut cables) on seed 000 Test 1 (target <= 1 s) and, when the
 generic sets for m = 4 .. 6 are stored, Test 3 (63 subproblems, target <= 10 s on 2 cores).
 
-    python benchmarks/bench_dgp.py [--repeat 3] [--jobs N] [--no-test3] [--test2] [--phc] [--phc-test3] [--phc-timeout S]
+    python -m benchmarks.bench_dgp [--repeat 3] [--jobs N] [--no-test3] [--test2] [--phc] [--phc-test3] [--phc-timeout S]
 
 ``--phc`` also solves the homotopy subproblems (m >= 2) of Test 1 with PHCpack's blackbox (``phc -b``, Debian
 package ``phcpack``) in the same run, on the same normalized equations (:func:`cdpr_algebra.model.taut_equations.taut_family`
@@ -24,11 +24,12 @@ from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT / "benchmarks"), str(ROOT)]
 
 from cdpr_algebra.dgp.solve import available_m, dgp  # noqa: E402
 from cdpr_algebra.model.robot import load_robot  # noqa: E402
+from timing import machine  # noqa: E402
 
 
 def bench(path, repeat, jobs):
@@ -45,8 +46,8 @@ def bench(path, repeat, jobs):
     skipped = sum(1 for s in res.subproblems if s.skipped)
     o = res.outcomes()
     paths = sum(s.paths for s in res.subproblems)
-    print(f"{robot.name}: first run {first:.2f} s, median of {repeat}: {statistics.median(times):.2f} s "
-          f"(range {min(times):.2f}-{max(times):.2f} s) "
+    print(f"{robot.name}: first run {first:.2f} s, median {statistics.median(times):.2f} s "
+          f"(min {min(times):.2f}, max {max(times):.2f}, {repeat} runs) "
           f"(jobs={jobs}); {len(res.solutions)} admissible ({', '.join(f'm={m}: {c}' for m, c in counts.items() if c)}), "
           f"{len(res.stable)} stable; {len(res.subproblems)} subproblems ({skipped} skipped, "
           f"{len(res.incomplete)} incomplete), {paths} paths: {o['regular']} regular, {o['singular']} singular, "
@@ -102,6 +103,7 @@ def main(argv=None):
     ap.add_argument("--phc-test3", action="store_true", help="also PHCpack on one subproblem per m of Test 3")
     ap.add_argument("--phc-timeout", type=float, default=1800.0)
     args = ap.parse_args(argv)
+    print(machine())
     print(f"stored generic sets: m = {available_m()}")
     bench(ROOT / "examples" / "seed000_test1.toml", args.repeat, args.jobs)
     if args.test2:

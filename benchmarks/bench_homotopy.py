@@ -1,13 +1,13 @@
 """Benchmark of the homotopy engine (issue #3): paths, solutions, wall time, paths per second.
 
-    python benchmarks/bench_homotopy.py [--runs 5] [--phc] [--regenerate]
+    python -m benchmarks.bench_homotopy [--runs 5] [--phc] [--regenerate]
 
 Systems: Katsura-5 and -6 (total degree), cyclic-5 (total degree, 50 paths at infinity), and the
 3-cable DGP of seed 000 Test 1 (12 quadrics, 156 generic solutions) by a parameter homotopy from
 the stored generic complex instance ``cdpr_algebra/data/dgp3_generic.json`` to the robot data of
 ``examples/seed000_test1.toml``; its 6 real solutions with non-negative tensions are checked against
 Table 1 (``tests/data/seed000_tables.json``, with the erratum x_O' = 2.751 of configuration 1).
-Times are medians of ``--runs`` runs (compilation excluded: systems are compiled once).
+Times are median, min and max of ``--runs`` runs (compilation excluded: systems are compiled once).
 
 ``--phc`` also runs PHCpack's blackbox (``phc -b``) on every system if ``phc`` is installed (Debian package
 ``phcpack``); ``--bertini PYTHON`` runs Bertini 2 (PyPI package ``bertini``, total-degree start, Cauchy
@@ -38,9 +38,11 @@ import sympy as sp
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "derivations"))
+sys.path.insert(0, str(ROOT / "benchmarks"))
 
 from cdpr_algebra.model.robot import load_robot  # noqa: E402
 from cdpr_algebra.homotopy import SolveOptions, TrackerOptions, solve, solve_parameter_homotopy  # noqa: E402
+from timing import machine  # noqa: E402
 from cdpr_algebra.dgp.anchor_points import dgp3_family, dgp3_parameters, dgp3_poses  # noqa: E402
 from cdpr_algebra.homotopy.families import cyclic, katsura  # noqa: E402
 from cdpr_algebra.homotopy.monodromy import load_instance  # noqa: E402
@@ -62,7 +64,7 @@ def timed(fn, runs):
         t = time.perf_counter()
         out = fn()
         ts.append(time.perf_counter() - t)
-    return statistics.median(ts), out
+    return statistics.median(ts), out, ts
 
 
 def table1_check(robot, result):
@@ -193,24 +195,27 @@ def main(argv=None):
     peer_systems = []
     for name, S in (("katsura5", katsura(5)), ("katsura6", katsura(6)), ("cyclic5", cyclic(5))):
         solve(S, seed=0)  # compile
-        wall, r = timed(lambda: solve(S, seed=0), args.runs)
+        wall, r, ts = timed(lambda: solve(S, seed=0), args.runs)
         s = r.summary()
-        rows.append((name, "total degree", s.paths, f"{len(r.nonsingular)} (+{s.at_infinity} at inf)", wall))
+        rows.append((name, "total degree", s.paths, f"{len(r.nonsingular)} (+{s.at_infinity} at inf)", wall, ts))
         peer_systems.append((name, S, np.zeros(0)))
     S = dgp3_family()
     p1, X1, _ = load_instance(DATA, S)
     robot = load_robot(ROBOT)
     p0 = dgp3_parameters(robot)
     solve_parameter_homotopy(S, p1, X1[:2], p0)  # compile
-    wall, r = timed(lambda: solve_parameter_homotopy(S, p1, X1, p0, seed=0, options=FAST), args.runs)
+    wall, r, ts = timed(lambda: solve_parameter_homotopy(S, p1, X1, p0, seed=0, options=FAST), args.runs)
     s = r.summary()
-    rows.append(("DGP seed000 Test 1", "parameter (stored generic)", s.paths, f"{len(r.nonsingular)} ({s.failed} failed)", wall))
+    rows.append(("DGP seed000 Test 1", "parameter (stored generic)", s.paths, f"{len(r.nonsingular)} ({s.failed} failed)",
+                 wall, ts))
     if args.peer_dgp:
         peer_systems.append(("DGP seed000 Test 1", S, p0))
     nreal, nadm, matched, nrows = table1_check(robot, r)
-    print(f"{'system':<20} {'homotopy':<28} {'paths':>6} {'solutions':>22} {'wall s':>8} {'paths/s':>9}")
-    for name, kind, paths, sols, w in rows:
-        print(f"{name:<20} {kind:<28} {paths:>6} {sols:>22} {w:>8.3f} {paths / w:>9.0f}")
+    print(machine())
+    print(f"{'system':<20} {'homotopy':<28} {'paths':>6} {'solutions':>22} {'median s':>9} {'min s':>7} {'max s':>7} "
+          f"{'paths/s':>9}")
+    for name, kind, paths, sols, w, ts in rows:
+        print(f"{name:<20} {kind:<28} {paths:>6} {sols:>22} {w:>9.3f} {min(ts):>7.3f} {max(ts):>7.3f} {paths / w:>9.0f}")
     print(f"DGP: {nreal} real, {nadm} with tensions >= 0; Table 1 poses matched: {matched}/{nrows}; "
           f"median of {args.runs} runs; target <= 0.5 s: {'met' if rows[-1][4] <= 0.5 else 'NOT met'}")
     for name, S, p in peer_systems if (args.phc or args.bertini) else ():

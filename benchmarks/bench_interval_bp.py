@@ -1,6 +1,6 @@
 """Wall time of the interval branch-and-prune DGP (issue 8, seed 000's method) on seed 000 Tests 1-3.
 
-    python benchmarks/bench_interval_bp.py [--repeat 3] [--test2] [--test3] [--max-m M] [--subproblem C1 C2 ..]
+    python -m benchmarks.bench_interval_bp [--repeat 3] [--test2] [--test3] [--max-m M] [--subproblem C1 C2 ..]
 
 Test 1 (all 7 subproblems, m <= 3): the median of ``--repeat`` runs against the target <= 25 s (the published
 single-core time of the C++ code, seed 000 Sec. 5.1).  ``--test2`` / ``--test3``: one run of all 63 subproblems
@@ -21,11 +21,12 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT / "benchmarks"), str(ROOT)]
 
 from cdpr_algebra.bp.search import interval_dgp, solve_taut_set_interval  # noqa: E402
 from cdpr_algebra.model.robot import load_robot  # noqa: E402
+from timing import machine, spread  # noqa: E402
 
 # name: (published seconds, published counts by m, homotopy admissible counts by m)
 PUBLISHED = {"seed000_test1": (25.0, {3: 6, 2: 0, 1: 0}, {3: 6, 2: 0, 1: 0}),
@@ -50,7 +51,7 @@ def run(path, repeat: int, max_m: int, verbose: bool):
     by_m = {m: len(res.by_m(m)) for m in range(6, 0, -1) if any(len(s.taut) == m for s in res.subproblems)}
     boxes = sum(s.boxes for s in res.subproblems)
     med = statistics.median(times)
-    line = (f"{robot.name}: median of {repeat}: {med:.1f} s (runs: {', '.join(f'{t:.1f}' for t in times)}); "
+    line = (f"{robot.name}: {spread(times)}; "
             f"{len(res.subproblems)} subproblems, {boxes} boxes; admissible by m: "
             f"{', '.join(f'm={m}: {c}' for m, c in by_m.items())}; undecided boxes: {len(res.undecided)}")
     if published is not None:
@@ -79,13 +80,14 @@ def main(argv=None):
                     help="time one subproblem of Test 1 (cable numbers from 1) instead")
     ap.add_argument("--verbose", action="store_true", help="per-subproblem progress on stderr")
     args = ap.parse_args(argv)
+    print(machine())
     if args.subproblem:
         robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
         times = []
         for _ in range(args.repeat):
             sub = solve_taut_set_interval(robot, robot.lengths, [c - 1 for c in args.subproblem])
             times.append(sub.seconds)
-        print(f"taut {args.subproblem}: median {statistics.median(times):.2f} s, {sub.admissible} admissible, "
+        print(f"taut {args.subproblem}: {spread(times)}, {sub.admissible} admissible, "
               f"{len(sub.undecided)} undecided, {sub.boxes} boxes")
         return
     med = run(ROOT / "examples" / "seed000_test1.toml", args.repeat, min(args.max_m, 3), args.verbose)

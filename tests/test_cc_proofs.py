@@ -73,13 +73,13 @@ def test_radius_certificate_parts(robot):
     assert abs(value) <= 1e-9 * scale
 
 
-def test_nearest_not_proven_is_reported_as_float_search(robot, monkeypatch, capsys):
-    monkeypatch.setattr(radii_mod, "NEAREST_MAX_BOXES", 3)
-    res = cc_radii(robot, (1, 0, 2), [3, 4, 5, 6, 7, 8], certify=True)
+def test_nearest_not_proven_is_reported_as_float_search(robot, capsys):
+    res = cc_radii(robot, (1, 0, 2), [3, 4, 5, 6, 7, 8], certify=True, nearest_max_boxes=3)
     rc = res.radius_certificate
     assert rc["critical_point"] == "certified" and rc["nearest"] == "float search"
     assert res.certified is False and rc["proven_interval"] is None and rc["proven_lower_bound"] is None
-    assert main(["cc", ROBOT, "--position", "1", "0", "2", "--configuration", "3", "4", "5", "6", "7", "8"]) == 0
+    assert main(["cc", ROBOT, "--position", "1", "0", "2", "--configuration", "3", "4", "5", "6", "7", "8",
+                 "--proof-boxes", "3"]) == 0
     text = capsys.readouterr().out
     row = text.splitlines()[3]
     assert "critical point" in row and "certified robustness radius" not in text

@@ -56,8 +56,7 @@ def _equilibrium_numpy(robot, A, b, rho, G0, iters=50):
 def test_seed002_cc345678_robust_to_5mm(robot):
     res = uncertainty_check(robot, (0, 1, 2), CC, dA=0.005, dB=0.001, drho=0.005)
     assert res.robust is True and res.counterexample is None
-    assert np.all(res.tension_bounds[:, 0] > 0)
-    assert res.seconds < 60
+    assert np.all(res.tension_bounds[:, 0] > 0)  # its time: benchmarks/bench_cc.py (Sec. IV-D uncertainty)
 
 
 def test_small_tolerances_proven_with_unique_equilibrium(robot):

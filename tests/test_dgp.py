@@ -259,3 +259,24 @@ def test_fast_evaluators_match_the_family(m):
     for p in (rng.normal(size=fs.m) + 1j * rng.normal(size=fs.m), rng.normal(size=(5, fs.m))):
         for a, b in zip(fs.family.evaluate_all(x, p), fs.evaluate_all(x, p)):
             assert np.allclose(a, b, rtol=0, atol=1e-12 * (1 + np.abs(a).max()))
+
+
+def test_result_carries_the_seed_and_options_that_reproduce_it():
+    """The DGP result (and its JSON) names its seed and homotopy options; another seed and a tighter predictor give
+    the same equilibria (seed 000 Test 1), and the default options are reported when none are given."""
+    from dataclasses import replace
+
+    from cdpr_algebra.dgp.solve import default_options, dgp
+    from cdpr_algebra.homotopy.tracker import TrackerOptions
+
+    robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
+    a = dgp(robot)
+    opts = replace(default_options(), tracker=TrackerOptions(predictor_tol=1e-5))
+    b = dgp(robot, seed=3, options=opts)
+    da, db = a.to_dict(), b.to_dict()
+    assert (da["seed"], db["seed"]) == (0, 3) and da["status"] == db["status"] == "complete"
+    assert da["options"] == default_options().to_dict()
+    assert db["options"]["tracker"]["predictor_tol"] == 1e-5
+    assert len(a.solutions) == len(b.solutions) == 6
+    for s, t in zip(a.solutions, b.solutions):
+        assert s.taut == t.taut and np.allclose(s.position, t.position, atol=1e-9)

@@ -67,7 +67,7 @@ import numpy as np
 
 from .configurations import check_pose, parse_cables, wrench_columns
 from .cubic_distances import MONOMIALS, _GRID, _VINV, distance_to_cubics, evaluate_cubic
-from .radius_proofs import NEAREST_REL_GAP, arb_cubic, certify_radius, prove_nearest
+from .radius_proofs import NEAREST_MAX_BOXES, NEAREST_REL_GAP, arb_cubic, certify_radius, prove_nearest
 from cdpr_algebra.report.jsonable import jsonable
 
 __all__ = ["MONOMIALS", "CCPolynomials", "CCRadii", "cc_polynomials", "cc_radii",
@@ -176,9 +176,11 @@ class CCRadii:
                          "seconds": self.seconds})
 
 
-def cc_radii_many(robot, requests, scale: float | None = None, seed: int = 0, certify: bool = False
-                  ) -> list[CCRadii]:
-    """Radii of many (position, 0-based cables[, rotation]) requests in one batched homotopy run."""
+def cc_radii_many(robot, requests, scale: float | None = None, seed: int = 0, certify: bool = False,
+                  nearest_max_boxes: int = NEAREST_MAX_BOXES) -> list[CCRadii]:
+    """Radii of many (position, 0-based cables[, rotation]) requests in one batched homotopy run; ``certify``: the
+    interval certificate of each r_min, the proof of nearest-ness giving up after ``nearest_max_boxes`` boxes per
+    cubic (then "float search")."""
     t0 = time.perf_counter()
     h = _default_scale(robot) if scale is None else float(scale)
     Gs, Rs, Ss = [], [], []
@@ -214,21 +216,21 @@ def cc_radii_many(robot, requests, scale: float | None = None, seed: int = 0, ce
         res = CCRadii(S, G, R, tau, radii, sing, rmin, which, points[which], points,
                       sum(c.failed for c in cd), shared)
         if certify:
-            res = _with_certificate(res, robot, h)
+            res = _with_certificate(res, robot, h, nearest_max_boxes)
         out.append(res)
     return out
 
 
 def cc_radii(robot, position, cables, rotation=None, scale: float | None = None, seed: int = 0,
-             certify: bool = False) -> CCRadii:
-    """Seed 002 Sec. II-B.1 for one 6-cable CC given by 1-based cable numbers (e.g. [1, 2, 3, 4, 5, 6])."""
+             certify: bool = False, nearest_max_boxes: int = NEAREST_MAX_BOXES) -> CCRadii:
+    """Merlet Sec. II-B.1 for one 6-cable CC given by 1-based cable numbers (e.g. [1, 2, 3, 4, 5, 6])."""
     S = parse_cables(robot, cables, "configuration", size=6)
-    return cc_radii_many(robot, [(position, S, rotation)], scale, seed, certify)[0]
+    return cc_radii_many(robot, [(position, S, rotation)], scale, seed, certify, nearest_max_boxes)[0]
 
 
 
 
-def _with_certificate(res: CCRadii, robot, h: float) -> CCRadii:
+def _with_certificate(res: CCRadii, robot, h: float, max_boxes: int = NEAREST_MAX_BOXES) -> CCRadii:
     """Certify the minimizing critical point (Krawczyk) and prove that it is the nearest (interval exclusion, within a
     relative ``NEAREST_REL_GAP`` of the certified distance); ``certified`` when both are proven."""
     from dataclasses import replace
@@ -237,7 +239,7 @@ def _with_certificate(res: CCRadii, robot, h: float) -> CCRadii:
     column = None if which == "singular" else res.cables.index(which)
     cert = certify_radius(robot, res.position, res.rotation, res.cables, column, h, res.nearest)
     base = cert["radius_enclosure"][0] if cert["proven"] else float(res.rmin)
-    near = prove_nearest(robot, res.position, res.rotation, res.cables, h, (1.0 - NEAREST_REL_GAP) * base)
+    near = prove_nearest(robot, res.position, res.rotation, res.cables, h, (1.0 - NEAREST_REL_GAP) * base, max_boxes)
     cert["method"] = ("critical point: Krawczyk (arb) on the Lagrange system of the enclosed cubic; nearest: interval "
                       "exclusion of every critical point of the distance to the seven enclosed cubics within the "
                       "proven lower bound")

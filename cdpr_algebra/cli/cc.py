@@ -57,6 +57,9 @@ def add_parser(subparsers) -> None:
                    help="second criterion: no sub-configuration equilibrium within this radius (pose only)")
     p.add_argument("--uncertainty", nargs=3, type=finite("--uncertainty"), metavar=("DA", "DB", "DRHO"),
                    help="uncertainty criterion: +-DA on A, +-DB on b', +-DRHO on the lengths (pose only)")
+    p.add_argument("--proof-boxes", type=int, default=None, metavar="N",
+                   help="boxes per cubic before the interval proof that r_min is the nearest critical point gives "
+                        "up, leaving nearest-ness a floating-point search (default 200000)")
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
@@ -113,13 +116,17 @@ def _pose(args, robot, R) -> tuple[list, dict]:
         raise CdprInputError("--ball", f"expected a radius > 0, got {args.ball}")
     if args.uncertainty is not None and min(args.uncertainty) < 0:
         raise CdprInputError("--uncertainty", f"expected DA DB DRHO >= 0, got {args.uncertainty}")
+    if args.proof_boxes is not None and args.proof_boxes < 1:
+        raise CdprInputError("--proof-boxes", f"expected a number >= 1, got {args.proof_boxes}")
     numbers = _configuration_numbers(args)
     if numbers is not None:
         ccs = [configuration_tensions(robot, G, parse_cables(robot, numbers, "--configuration"), R)]
     else:
         ccs = valid_configurations(robot, G, R)
     six = [c for c in ccs if len(c.cables) == 6]
-    radii = dict(zip([c.cables for c in six], cc_radii_many(robot, [(G, c.cables, R) for c in six], certify=True)))
+    extra = {} if args.proof_boxes is None else {"nearest_max_boxes": args.proof_boxes}
+    radii = dict(zip([c.cables for c in six], cc_radii_many(robot, [(G, c.cables, R) for c in six], certify=True,
+                                                            **extra)))
     ccs = [replace(c, rmin=(radii[c.cables].rmin if c.valid else 0.0)) if c.cables in radii else c for c in ccs]
     ccs = rank_configurations(ccs) if numbers is None else ccs
     safety, unc = {}, {}

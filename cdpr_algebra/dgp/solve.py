@@ -187,9 +187,15 @@ class DGPSubproblem:
 
 @dataclass(frozen=True)
 class DGPResult:
+    """Every admissible equilibrium of one DGP, its subproblems, and what reproduces it: ``seed`` and ``options``
+    (the homotopy's :class:`cdpr_algebra.homotopy.endgame.SolveOptions`, None for :func:`default_options`).
+    ``status`` is "complete" (every subproblem proven complete) or "incomplete"."""
+
     solutions: tuple
     subproblems: tuple
     seconds: float
+    seed: int = 0
+    options: object = None
 
     @property
     def stable(self) -> tuple:
@@ -215,6 +221,10 @@ class DGPResult:
     def complete(self) -> bool:
         return not self.incomplete
 
+    @property
+    def status(self) -> str:
+        return "complete" if self.complete else "incomplete"
+
     def outcomes(self) -> dict:
         """Paths per outcome over all subproblems."""
         total = dict.fromkeys(OUTCOMES, 0)
@@ -224,9 +234,10 @@ class DGPResult:
         return total
 
     def to_dict(self) -> dict:
-        return {"complete": self.complete, "incomplete": [list(s.taut) for s in self.incomplete],
+        return {"status": self.status, "complete": self.complete, "incomplete": [list(s.taut) for s in self.incomplete],
                 "outcomes": self.outcomes(), "solutions": [s.to_dict() for s in self.solutions],
-                "subproblems": [s.to_dict() for s in self.subproblems], "seconds": self.seconds}
+                "subproblems": [s.to_dict() for s in self.subproblems], "seconds": self.seconds, "seed": self.seed,
+                "options": (self.options or default_options()).to_dict()}
 
 
 # ---------------------------------------------------------------------------------------------
@@ -679,7 +690,7 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
     subs = tuple(_with_endpoint_certificates(robot, rho, [(c, *results[c][::2]) for c in sets]))
     sols = _merge([s for c in sets for s in results[c][1]], robot.size)
     sols.sort(key=lambda s: (-len(s.taut), s.taut, tuple(np.round(s.position, 9))))
-    return DGPResult(tuple(sols), subs, time.perf_counter() - t0)
+    return DGPResult(tuple(sols), subs, time.perf_counter() - t0, seed, options)
 
 
 def _certified_label(s) -> str:

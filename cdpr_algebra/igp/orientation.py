@@ -221,11 +221,11 @@ def _vertical_line(prob: _Problem, xy, tol) -> SolutionSet | None:
                 and _parallel(prob.r[i], [0, 0, 1], tol, exact)):
             return SolutionSet(
                 "crane", f"the robot works as a 1-dof crane: G moves on the vertical line through A_{i + 1}, "
-                         f"cable {i + 1} holding the whole load (seed 004 App. A)",
+                         f"cable {i + 1} holding the whole load (Carricato 2013, App. A)",
                 {"cable": i + 1, "line_point": base_pt, "line_direction": direction})
     return SolutionSet(
         "vertical_line", "G moves on a line parallel to the load direction (Gamma_1 = Gamma_2 = Gamma_3 = 0, "
-                         "seed 004 App. A)", {"line_point": base_pt, "line_direction": direction})
+                         "Carricato 2013, App. A)", {"line_point": base_pt, "line_direction": direction})
 
 
 def _hat_point(prob: _Problem, tol):
@@ -266,7 +266,7 @@ def _special_set(prob: _Problem, tol) -> SolutionSet:
         return SolutionSet(
             "cylinder_curve",
             "G moves on a curve lying on a cylinder parallel to the load direction: its cross-section is the conic "
-            "p23(x, y) = 0 in the work frame (origin A_1, z along the load), z follows from p2 = 0 (seed 004 App. A)",
+            "p23(x, y) = 0 in the work frame (origin A_1, z along the load), z follows from p2 = 0 (Carricato 2013, App. A)",
             {"work_frame": _frame_dict(prob), "conic_monomials": gen.P23_MONOMIALS,
              "conic_coefficients": [_num(v) for v in conic]},
         )
@@ -281,11 +281,11 @@ def _special_set(prob: _Problem, tol) -> SolutionSet:
             return SolutionSet(
                 "planar_conic",
                 f"G moves on a conic in the vertical plane through A_{i + 1} and A_{j + 1}; the robot behaves like a 2-2 "
-                f"CDPR with cables {i + 1} and {j + 1} holding the load and cable {h + 1} slack (seed 004 App. A)",
+                f"CDPR with cables {i + 1} and {j + 1} holding the load and cable {h + 1} slack (Carricato 2013, App. A)",
                 {"cables": [i + 1, j + 1], "slack_cable": h + 1,
                  "plane_point": _world_list(prob, prob.a[i]), "plane_normal": _dir_list(prob, pij)},
             )
-    return SolutionSet("empty", "p123 vanishes identically but no special set of seed 004 App. A applies: no isolated "
+    return SolutionSet("empty", "p123 vanishes identically but no special set of Carricato 2013, App. A applies: no isolated "
                                 "solution (the case is flagged, not solved)", {"work_frame": _frame_dict(prob)})
 
 
@@ -365,7 +365,7 @@ def _locate(prob: _Problem, tol):
         if "identically zero" in reasons:
             return None, _special_set(prob, tol)
         return None, SolutionSet("empty", "the non-trivial root of p123 is at infinity: no equilibrium with this "
-                                          "orientation (seed 004 App. A, empty solution sets)")
+                                          "orientation (Carricato 2013, App. A, empty solution sets)")
     (c1_, s1_), u1 = coords[0]
     (c2_, s2_), u2 = coords[1]
     det = c1_ * s2_ - s1_ * c2_
@@ -383,7 +383,7 @@ def _locate(prob: _Problem, tol):
         vl = _vertical_line(prob, (X, Y), 1e-9)
         if vl is not None:
             return None, vl
-        return None, SolutionSet("empty", "(x4, y4) does not extend to a finite z (seed 004 App. A, empty "
+        return None, SolutionSet("empty", "(x4, y4) does not extend to a finite z (Carricato 2013, App. A, empty "
                                           "solution sets): no equilibrium with this orientation")
     return [X, Y, -rest / cz], None
 
