@@ -23,7 +23,8 @@ def kernel_manager(kernel_dir: Path):
     from jupyter_client.kernelspec import KernelSpecManager
     from jupyter_client.manager import KernelManager
 
-    write_kernel_spec(kernel_dir / "python3")
+    if not (kernel_dir / "python3").exists():
+        write_kernel_spec(kernel_dir / "python3")
     ksm = KernelSpecManager(kernel_dirs=[str(kernel_dir)])
     return KernelManager(kernel_name="python3", kernel_spec_manager=ksm)
 
