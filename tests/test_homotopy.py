@@ -362,3 +362,29 @@ def test_directional_parameter_derivatives_equal_the_full_parameter_jacobian():
         assert np.array_equal(F, F2) and np.array_equal(J, J2)
         ref = np.einsum("nik,nk->ni", JP, dP)
         assert np.max(np.abs(Ht - ref)) <= 1e-12 * (1 + np.max(np.abs(ref)))
+
+
+def test_many_target_solver_against_closed_form_roots():
+    """The engine's many-target parameter homotopy (homotopy/many_targets.py) on x^2 + a x + b = 0,
+    y - c x - d = 0 for 300 random real (a, b, c, d): the real solutions of every target are exactly the real
+    roots of its quadratic (numpy), none lost, none extra, no failed path."""
+    import sympy as sp
+
+    from cdpr_algebra.homotopy.many_targets import ManyTargetSolver
+    from cdpr_algebra.homotopy.systems import PolynomialSystem
+
+    x, y, a, b, c, d = sp.symbols("x y a b c d")
+    system = PolynomialSystem([x ** 2 + a * x + b, y - c * x - d], [x, y], [a, b, c, d], name="quadratic_line")
+    rng = np.random.default_rng(5)
+    P = rng.normal(size=(300, 4)) * [2.0, 1.0, 1.0, 1.0]
+    out = ManyTargetSolver(system, seed=1).solve(P)
+    assert len(out) == len(P)
+    for (sols, failed), (pa, pb, pc, pd) in zip(out, P):
+        assert failed == 0
+        disc = pa * pa - 4 * pb
+        expect = sorted(np.roots([1, pa, pb]).real) if disc > 1e-9 else []
+        got = sorted(sols[:, 0]) if len(sols) else []
+        assert len(got) == len(expect), (pa, pb, got, expect)
+        assert np.allclose(got, expect, atol=1e-9)
+        if len(sols):
+            assert np.allclose(sols[:, 1], pc * sols[:, 0] + pd, atol=1e-9)

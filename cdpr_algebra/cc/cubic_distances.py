@@ -9,6 +9,8 @@ import time
 from dataclasses import dataclass
 import numpy as np
 
+from cdpr_algebra.homotopy.many_targets import INFINITY_Y0, LABEL_SCALE, track_many
+
 
 
 # monomials y1^i y2^j y3^k of total degree <= 3 (the coefficient order of every cubic here)
@@ -17,7 +19,6 @@ _EXPH = np.array([(3 - sum(m),) + m for m in MONOMIALS])  # homogeneous exponent
 _NODES = np.cos(np.pi * (np.arange(4) + 0.5) / 4)  # Chebyshev nodes in [-1, 1]
 _VINV = np.linalg.inv(np.vander(_NODES, 4, increasing=True))
 _GRID = np.stack(np.meshgrid(_NODES, _NODES, _NODES, indexing="ij"), -1).reshape(-1, 3)
-LABEL_SCALE = 1024  # path label k is stored as k / LABEL_SCALE
 
 
 def _tensor_map() -> np.ndarray:
@@ -273,7 +274,8 @@ def _generic(seed: int = 0) -> _Generic:
         c1 = rng.normal(size=20) + 1j * rng.normal(size=20)
         start = _LinearProductStart(system, rng)
         gamma = np.exp(2j * np.pi * rng.random())
-        xend, status = track_batch(_StartHomotopy(start, system, c1, gamma), start.solutions, seed)
+        xend, status = track_many(_StartHomotopy(start, system, c1, gamma), start.solutions, seed,
+                                  at_infinity=_chart_at_infinity)
         X = xend[status == "success"]
         if len(X):
             X = X[(np.abs(X[:, 0]) > 1e-6) & (np.abs(X[:, 4]) > 1e-6)]
@@ -354,10 +356,9 @@ def balance(c) -> tuple[np.ndarray, float]:
     return ct / np.abs(ct).max(), s
 
 
-ACCEPT_UPDATE = 1e-9
 # Step control of the batched parameter homotopies: predictor tolerance 1e-4 (engine default 1e-5) halves the
 # steps; measured on the 48 cubics of seed 002 Sec. IV-B.1 it gives the same critical points (to 2e-12) and the
-# duplicate check of track_batch re-tracks any path that jumps onto another one.
+# duplicate check of track_many re-tracks any path that jumps onto another one.
 
 
 def _batch_tracker():
@@ -365,80 +366,11 @@ def _batch_tracker():
 
     return TrackerOptions(predictor_tol=1e-4)
 
-INFINITY_Y0 = 1e-5  # chart points with |y0| <= this * |Y| are at infinity (|y| >~ 1e5 in scaled units)
 
 
 def _chart_at_infinity(z):
     """The ED system's chart points with y0 ~ 0 (coordinates 0..3 are (y0 : y))."""
     return np.abs(z[:, 0]) <= INFINITY_Y0 * np.abs(z[:, :4]).max(axis=1)
-
-
-def track_batch(hom, X0, seed: int = 0, at_infinity=_chart_at_infinity, tracker=None):
-    """Track every path of ``hom`` with the engine's tracker and endgame pieces; returns (endpoints, status).
-
-    Phase 1 (t = 1 -> 0.1) with one tightened retry of failed paths; phase 2 (0.1 -> 0) and Newton refinement
-    (:func:`.homotopy.endgame.refine`): quadratic convergence and cond <= 1e10 is ``success``.  Paths that end
-    with y0 ~ 0 in the chart are ``at_infinity`` without an endgame (they are of no use for a distance); the
-    remaining ones go through the engine's Cauchy endgame (``singular`` when finite).  Nonsingular endpoints of
-    one instance that coincide (path jumping) are re-tracked with tightened steps.  ``at_infinity(z)`` flags
-    chart points at infinity (a boolean per row)."""
-    from cdpr_algebra.homotopy.endgame import EndgameOptions, cauchy_endgame, duplicate_groups, refine
-    from cdpr_algebra.homotopy.tracker import TrackerOptions, track_segment
-
-    tr, eo = tracker or TrackerOptions(), EndgameOptions()
-    te = eo.endgame_start
-
-    def run(X, tro):
-        N = len(X)
-        xend = np.array(X, dtype=complex)
-        status = np.full(N, "failed", dtype=object)
-        seg = track_segment(hom, X, 1.0, te, tro)
-        x1, ok1 = seg.x, seg.status == "success"
-        bad = np.flatnonzero(~ok1)
-        if bad.size:
-            seg_b = track_segment(hom, X[bad], 1.0, te, tro.tightened())
-            x1[bad] = seg_b.x
-            ok1[bad] = seg_b.status == "success"
-        live = np.flatnonzero(ok1)
-        xend[~ok1] = x1[~ok1]
-        if not live.size:
-            return xend, status
-        seg2 = track_segment(hom, x1[live], te, 0.0, tro)
-        xr, upd, _, cond, quad = refine(hom, seg2.x, 0.0, tol=eo.refine_tol)
-        # nonsingular: Newton settled (last update <= ACCEPT_UPDATE; the engine's 1e-13 floor is too strict for
-        # points whose chart coordinates carry a large lam) and the Jacobian is well conditioned
-        good = (seg2.status == "success") & ((upd <= ACCEPT_UPDATE) | quad) & (cond <= eo.singular_condition)
-        xend[live] = np.where(good[:, None], xr, seg2.x)
-        status[live[good]] = "success"
-        rest = live[~good]
-        if rest.size:
-            inf = at_infinity(xend[rest])
-            status[rest[inf]] = "at_infinity"
-            rest = rest[~inf]
-        if rest.size:
-            eg = cauchy_endgame(hom, x1[rest], te, eo, tro)
-            xend[rest] = eg.x
-            for i, st, xx in zip(rest, eg.status, eg.x):
-                if st == "singular":
-                    if at_infinity(xx[None, :])[0]:
-                        st = "at_infinity"
-                    else:
-                        xr1, _, _, c1_, q1 = refine(hom, xx[None, :], 0.0, tol=eo.refine_tol)
-                        if q1[0] and c1_[0] <= eo.singular_condition:
-                            xend[i], st = xr1[0], "success"
-                status[i] = st if st in ("success", "singular", "at_infinity") else "failed"
-        return xend, status
-
-    X0 = np.asarray(X0, dtype=complex)
-    xend, status = run(X0, tr)
-    succ = np.flatnonzero(status == "success")
-    if succ.size > 1:
-        groups = duplicate_groups(xend[succ], 1e-8)
-        redo = sorted({int(succ[i]) for g in groups for i in g})
-        if redo:
-            x2, s2 = run(X0[redo], tr.tightened(10.0))
-            xend[redo], status[redo] = x2, s2
-    return xend, status
 
 
 def distance_to_cubics(C, seed: int = 0, real_tol: float = 1e-7) -> list[CriticalDistances]:
@@ -468,7 +400,7 @@ def distance_to_cubics(C, seed: int = 0, real_tol: float = 1e-7) -> list[Critica
         X0 = np.concatenate([np.tile(gen.solutions, (len(idx), 1)),
                              np.repeat((idx - lo) / LABEL_SCALE, ED_DEGREE)[:, None]], axis=1)
         hom = _BatchParameterHomotopy(gen.system, gen.c1, U[idx])
-        xend, status = track_batch(hom, X0, seed, tracker=_batch_tracker())
+        xend, status = track_many(hom, X0, seed, at_infinity=_chart_at_infinity, tracker=_batch_tracker())
         for j, u in enumerate(idx):
             sl = slice(j * ED_DEGREE, (j + 1) * ED_DEGREE)
             solved[u] = _classify(U[u], scales[uniq[u]], xend[sl], status[sl], real_tol)

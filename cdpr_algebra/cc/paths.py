@@ -31,14 +31,14 @@ these distances over the seven cubics.
 
 from __future__ import annotations
 
-import itertools
 import time
 from dataclasses import dataclass, field
 
 import numpy as np
 import sympy as sp
 
-from .cubic_distances import MONOMIALS, INFINITY_Y0, LABEL_SCALE, track_batch
+from .cubic_distances import MONOMIALS
+from cdpr_algebra.homotopy.many_targets import ManyTargetSolver
 from .radii import polynomials_batch, cc_radii_many
 from .configurations import check_pose, configuration_tensions, parse_cables, valid_configurations
 from cdpr_algebra.model.errors import CdprInputError
@@ -186,153 +186,6 @@ def _in_range(spec: PathSpec, values, tol=1e-9) -> bool:
 # --------------------------------------------------------------------------- batched coefficient-parameter solves
 
 
-class _ChartStart:
-    """H = gamma t G(Y) + (1 - t) F_h(Y; p1) with the homogenized total-degree start G_i = y_i^d_i - y0^d_i; the
-    chart equation (last) is kept as is."""
-
-    def __init__(self, Fh, degrees, p1, gamma):
-        self.Fh, self.d, self.p1, self.gamma = Fh, np.array(degrees), np.asarray(p1, dtype=complex), complex(gamma)
-        self.n = self.neq = Fh.n
-
-    def evaluate_all(self, Y, t):
-        F, J = self.Fh.evaluate_and_jacobian(Y, self.p1)
-        G = np.zeros_like(F)
-        JG = np.zeros_like(J)
-        y0 = Y[:, 0]
-        for i, d in enumerate(self.d):
-            G[:, i] = Y[:, i + 1] ** d - y0 ** d
-            JG[:, i, i + 1] = d * Y[:, i + 1] ** (d - 1)
-            JG[:, i, 0] = -d * y0 ** (d - 1)
-        t = np.asarray(t, dtype=complex)
-        a, b = (self.gamma * t)[:, None], (1 - t)[:, None]
-        H = a * G + b * F
-        Hx = a[..., None] * JG + b[..., None] * J
-        H[:, -1], Hx[:, -1] = F[:, -1], J[:, -1]
-        Ht = self.gamma * G - F
-        Ht[:, -1] = 0
-        return H, Hx, Ht
-
-    def evaluate_and_jacobian(self, Y, t):
-        return self.evaluate_all(Y, t)[:2]
-
-    def evaluate(self, Y, t):
-        return self.evaluate_all(Y, t)[0]
-
-
-class _LabelledParameterHomotopy:
-    """H(Y, t) = F_h(Y; t p1 + (1 - t) P0[k]) for many targets P0 (K, m); path label k / LABEL_SCALE last.
-
-    F_h is affine in the parameters (the cubic's coefficients), so dH/dt = F_h(Y; p1 - p0) - F_h(Y; 0): two plain
-    evaluations instead of the parameter Jacobian."""
-
-    def __init__(self, Fh, p1, P0):
-        self.Fh, self.p1, self.P0 = Fh, np.asarray(p1, dtype=complex), np.asarray(P0, dtype=complex)
-        self.n = self.neq = Fh.n + 1
-
-    def evaluate_all(self, x, t, want_t=True):
-        k = np.clip(np.rint(np.nan_to_num(x[:, -1].real * LABEL_SCALE)), 0, len(self.P0) - 1).astype(int)
-        t = np.asarray(t, dtype=complex)[:, None]
-        p0 = self.P0[k]
-        P = t * self.p1 + (1 - t) * p0
-        Y = np.ascontiguousarray(x[:, :-1])
-        N = len(x)
-        H = np.empty((N, self.n), dtype=complex)
-        Hx = np.zeros((N, self.n, self.n), dtype=complex)
-        F, J = self.Fh.evaluate_and_jacobian(Y, P)
-        H[:, :-1] = F
-        H[:, -1] = x[:, -1] - k / LABEL_SCALE
-        Hx[:, :-1, :-1] = J
-        Hx[:, -1, -1] = 1.0
-        if not want_t:
-            return H, Hx
-        Ht = np.zeros((N, self.n), dtype=complex)
-        both = self.Fh.evaluate(np.concatenate([Y, Y]), np.concatenate([self.p1 - p0, np.zeros_like(p0)]))
-        Ht[:, :-1] = both[:N] - both[N:]
-        return H, Hx, Ht
-
-    def evaluate_and_jacobian(self, x, t):
-        return self.evaluate_all(x, t, want_t=False)
-
-    def evaluate(self, x, t):
-        return self.evaluate_all(x, t, want_t=False)[0]
-
-
-class _Family:
-    """All complex solutions of a square polynomial system F(x; c) for many real parameter vectors c (the 20
-    coefficients of a cubic): generic solve once (total degree in a projective chart), then batched parameter
-    homotopies.  Solutions come back affine; those at infinity (y0 ~ 0) are dropped."""
-
-    def __init__(self, system, seed: int = 0):
-        from cdpr_algebra.homotopy.projective import projectivize
-
-        self.system = system
-        self.Fh, self.chart = projectivize(system, seed=20131 + seed)
-        self.seed = seed
-        self._generic = None
-
-    def _at_inf(self, z):
-        n1 = self.system.n + 1
-        return np.abs(z[:, 0]) <= INFINITY_Y0 * np.abs(z[:, :n1]).max(axis=1)
-
-    def generic(self):
-        if self._generic is not None:
-            return self._generic
-        from cdpr_algebra.homotopy.projective import to_chart
-
-        rng = np.random.default_rng([self.seed, 2002])
-        p1 = rng.normal(size=self.system.m) + 1j * rng.normal(size=self.system.m)
-        degs = self.system.degrees
-        roots = [np.exp(2j * np.pi * np.arange(d) / d) for d in degs]  # y_i = root * y0
-        X = np.array(list(itertools.product(*roots)), dtype=complex)
-        Y0 = to_chart(X, self.chart)
-        gamma = np.exp(2j * np.pi * rng.random())
-        hom = _ChartStart(self.Fh, degs, p1, gamma)
-        xend, status = track_batch(hom, Y0, self.seed, at_infinity=self._at_inf)
-        good = (status == "success") & ~self._at_inf(xend)
-        S = xend[good]
-        # distinct
-        keep = []
-        for i in range(len(S)):
-            if all(np.abs(S[i] - S[j]).max() > 1e-8 * (1 + np.abs(S[i]).max()) for j in keep):
-                keep.append(i)
-        self._generic = (p1, S[keep], int(np.sum(status == "failed")))
-        return self._generic
-
-    def solve(self, P0, real_tol: float = 1e-7):
-        """For each real parameter vector: (affine real solutions (k, n), number of failed paths)."""
-        p1, S, _ = self.generic()
-        P0 = np.atleast_2d(np.asarray(P0, dtype=float))
-        out = []
-        for lo in range(0, len(P0), LABEL_SCALE):
-            idx = np.arange(lo, min(len(P0), lo + LABEL_SCALE))
-            X0 = np.concatenate([np.tile(S, (len(idx), 1)), np.repeat((idx - lo) / LABEL_SCALE, len(S))[:, None]],
-                                axis=1)
-            hom = _LabelledParameterHomotopy(self.Fh, p1, P0[idx])
-            xend, status = track_batch(hom, X0, self.seed, at_infinity=lambda z: self._at_inf(z[:, :-1]))
-            for j, k in enumerate(idx):
-                sl = slice(j * len(S), (j + 1) * len(S))
-                z, st = xend[sl, :-1], status[sl]
-                fin = ((st == "success") | (st == "singular")) & ~self._at_inf(z)
-                x = z[fin, 1:] / z[fin, :1]
-                real = np.all(np.abs(x.imag) <= real_tol * (1 + np.abs(x)), axis=1)
-                xr = self._polish(x[real].real, P0[k])
-                out.append((xr, int(np.sum(st == "failed"))))
-        return out
-
-    def _polish(self, X, p, iters=4):
-        if not len(X):
-            return X
-        X = X.astype(complex)
-        for _ in range(iters):
-            F, J = self.system.evaluate_and_jacobian(X, p.astype(complex))
-            try:
-                d = np.linalg.solve(J, -F[..., None])[..., 0]
-            except np.linalg.LinAlgError:
-                break
-            X = X + d.real
-        return X.real
-
-
 # ------------------------------------------------------------------------------------------------------ index
 
 
@@ -439,7 +292,7 @@ def _path_exprs_scaled(spec: PathSpec, center, h):
     return phi, unknowns, circles
 
 
-def _lagrange_family(phi, unknowns, circles, seed=0) -> _Family:
+def _lagrange_family(phi, unknowns, circles, seed=0) -> ManyTargetSolver:
     """The Lagrange system of min |w - phi(p)|^2 on {Q(w) = 0}, cubic coefficients as parameters."""
     from cdpr_algebra.homotopy.systems import PolynomialSystem
 
@@ -460,7 +313,7 @@ def _lagrange_family(phi, unknowns, circles, seed=0) -> _Family:
         pvars += list(u)
     eqs += circles
     system = PolynomialSystem(eqs, list(w) + [lam] + pvars, cs, name="cc_path_lagrange")
-    return _Family(system, seed)
+    return ManyTargetSolver(system, seed)
 
 
 def _params_from(spec: PathSpec, xs):

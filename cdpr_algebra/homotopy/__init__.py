@@ -8,6 +8,8 @@ Flat topic modules, after HomotopyContinuation.jl:
 * :mod:`.endgame` -- Cauchy endgame, at-infinity test, Newton refinement, retries (double, mpmath);
 * :mod:`.start_systems` -- total degree, multi-homogeneous (linear product), parameter homotopy;
 * :mod:`.monodromy` -- generic solution sets from one seed point, saved/loaded instances;
+* :mod:`.many_targets` -- one system solved for many parameter vectors in one batched run (labelled paths);
+* :mod:`.trace_test` -- the trace test that certifies a monodromy solution set complete;
 * :mod:`.results` -- immutable per-path and summary records;
 * :mod:`.solve` -- :func:`solve`, :func:`solve_parameter_homotopy`.
 """
