@@ -5,6 +5,7 @@ import json
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from cdpr_algebra.cli.main import main
@@ -62,6 +63,9 @@ def test_table(capsys):
     (["--surface", "u", "v", "2", "--range", "0", "1"], "--range"),
     (["--position", "0", "1", "2", "--trajectory", "t", "0", "2", "--range", "0", "1"], "--position"),
     (["--trajectory", "t", "0", "2", "--range", "0", "1", "--ball", "0.03"], "--ball"),
+    (["--trajectory", "cos(t)", "sin(t)", "2", "--range", "0", "t"], "--range"),
+    (["--trajectory", "cos(t)", "sin(t)", "2", "--range", "pi", "pi/2"], "--range"),
+    (["--trajectory", "cos(t)", "sin(t)", "2", "--range", "0", "1/0"], "--range"),
     (["--position", "0", "1", "2", "--configuration", "1", "2", "9"], "--configuration"),
     (["--position", "0", "1", "2", "--ball", "-1"], "--ball"),
     (["--position", "0", "1", "2", "--uncertainty", "-1", "0", "0"], "--uncertainty"),
@@ -71,6 +75,16 @@ def test_bad_input_one_line_exit_2(capsys, argv, field):
     assert main(["cc", ROBOT] + argv) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and err.startswith("cdpr: error:") and f"'{field}'" in err
+
+
+def test_range_takes_the_expressions_of_the_path():
+    """``--range 0 pi/2`` is the range [0, pi/2] to the last bit, as a path expression would read it."""
+    from cdpr_algebra.cc.paths import parse_path
+
+    spec = parse_path(["cos(t)", "sin(t)", "2"], [("0", "pi/2")])
+    assert [tuple(r) for r in spec.ranges] == [(0.0, float(np.pi / 2))]
+    surf = parse_path(["u", "v", "2"], [("-sqrt(2)", "2*pi"), (0, "1/3")])
+    assert [tuple(r) for r in surf.ranges] == [(-float(np.sqrt(2)), float(2 * np.pi)), (0.0, 1 / 3)]
 
 
 def test_unparsable_trajectory_subprocess():

@@ -95,15 +95,32 @@ def _parse_one(text: str, names, option: str):
         raise CdprInputError(option, f"{text!r} is not an expression")
     extra = sorted(str(s) for s in expr.free_symbols if str(s) not in names)
     if extra:
-        raise CdprInputError(option, f"unknown symbol {extra[0]!r} in {text!r} (the parameter{'s are' if len(names) > 1 else ' is'} "
-                             f"{', '.join(names)})")
+        expected = (f"the parameter{'s are' if len(names) > 1 else ' is'} {', '.join(names)}" if names
+                    else "a constant is expected")
+        raise CdprInputError(option, f"unknown symbol {extra[0]!r} in {text!r} ({expected})")
     if expr.atoms(sp.Function) - expr.atoms(sp.sin, sp.cos, sp.tan, sp.exp, sp.log, sp.Abs):
         raise CdprInputError(option, f"unknown function in {text!r}")
     return expr
 
 
+def range_bound(value, option: str = "--range") -> float:
+    """A range end: a number, or a constant expression in the syntax of the path expressions (``pi/2``, ``2*pi``,
+    ``sqrt(2)``), as a finite float."""
+    if isinstance(value, str):
+        expr = _parse_one(value, (), option)
+        try:
+            value = float(expr.evalf(30))
+        except TypeError:
+            raise CdprInputError(option, f"{value!r} is not a real constant") from None
+    value = float(value)
+    if not np.isfinite(value):
+        raise CdprInputError(option, f"expected a finite number, got {value}")
+    return value
+
+
 def parse_path(expressions, ranges, option: str = "--trajectory") -> PathSpec:
-    """Parse 3 expression strings of t (one range) or of u, v (two ranges) into a :class:`PathSpec`."""
+    """Parse 3 expression strings of t (one range) or of u, v (two ranges) into a :class:`PathSpec`; range ends
+    are numbers or constant expressions (:func:`range_bound`)."""
     if len(expressions) != 3:
         raise CdprInputError(option, f"expected 3 expressions (x, y, z of G), got {len(expressions)}")
     names = ("t",) if len(ranges) == 1 else ("u", "v")
@@ -111,9 +128,12 @@ def parse_path(expressions, ranges, option: str = "--trajectory") -> PathSpec:
         raise CdprInputError("--range", f"expected 1 (trajectory) or 2 (surface) ranges, got {len(ranges)}")
     rng = []
     for r in ranges:
-        if len(r) != 2 or not all(np.isfinite(r)) or not r[0] < r[1]:
-            raise CdprInputError("--range", f"expected two finite numbers LO < HI, got {list(r)}")
-        rng.append((float(r[0]), float(r[1])))
+        if len(r) != 2:
+            raise CdprInputError("--range", f"expected two ends LO HI, got {list(r)}")
+        lo, hi = range_bound(r[0]), range_bound(r[1])
+        if not lo < hi:
+            raise CdprInputError("--range", f"expected LO < HI, got {list(r)} = [{lo:g}, {hi:g}]")
+        rng.append((lo, hi))
     exprs = [_parse_one(e, names, option) for e in expressions]
     params = tuple(sp.Symbol(n, real=True) for n in names)
     kinds = []

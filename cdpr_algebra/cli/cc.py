@@ -51,8 +51,9 @@ def add_parser(subparsers) -> None:
     p.add_argument("--trajectory", nargs=3, metavar=("EX", "EY", "EZ"),
                    help="position of G as expressions of t (polynomials in t, or in cos(t), sin(t))")
     p.add_argument("--surface", nargs=3, metavar=("EX", "EY", "EZ"), help="position of G as expressions of u, v")
-    p.add_argument("--range", nargs=2, type=finite("--range"), action="append", metavar=("LO", "HI"),
-                   help="range of t (trajectory) or of u then v (surface, given twice)")
+    p.add_argument("--range", nargs=2, action="append", metavar=("LO", "HI"),
+                   help="range of t (trajectory) or of u then v (surface, given twice); numbers or constant "
+                        "expressions as in the path (0 pi/2)")
     p.add_argument("--ball", type=finite("--ball"), metavar="R",
                    help="second criterion: no sub-configuration equilibrium within this radius (pose only)")
     p.add_argument("--uncertainty", nargs=3, type=finite("--uncertainty"), metavar=("DA", "DB", "DRHO"),
