@@ -93,3 +93,17 @@ def test_unparsable_trajectory_subprocess():
     assert proc.returncode == 2 and proc.stdout == ""
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and "--trajectory" in lines[0] and "cannot parse 'cos(t'" in lines[0]
+
+
+def test_failed_paths_give_exit_3_and_name_the_configuration(capsys, monkeypatch):
+    """Paths forced to fail (a budget of 3 steps per path in the radii's batched homotopy): the JSON counts them per
+    configuration, stderr names the configuration, and the exit status is 3 (incomplete)."""
+    from cdpr_algebra.cc import cubic_distances
+    from cdpr_algebra.homotopy.tracker import TrackerOptions
+
+    monkeypatch.setattr(cubic_distances, "_batch_tracker", lambda: TrackerOptions(predictor_tol=1e-4, max_steps=3))
+    code = main(["cc", ROBOT, "--position", "1", "0", "2", "--configuration", "3", "4", "5", "6", "7", "8", "--json"])
+    out, err = capsys.readouterr()
+    entry = json.loads(out)["configurations"][0]
+    assert code == 3 and entry["failed_paths"] > 0
+    assert "incomplete" in err and "[3, 4, 5, 6, 7, 8]" in err and f"{entry['failed_paths']} failed path" in err

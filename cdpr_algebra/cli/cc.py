@@ -22,12 +22,17 @@ JSON: ``{"robot", "mode", "position", "angles", "configurations": [{"cables", "t
 "seconds"}``; ``null`` where a criterion was not asked for or does not apply (configurations with fewer than 6
 cables).  ``certified`` (r_min) is true only when both parts of ``radius_certificate`` are proven:
 ``{"critical_point": "certified" | "not certified", "nearest": "proven" | "float search", "proven_interval": [lo,
-hi] | null, ...}``; the per-cable ``radii`` other than the limiting one are floating-point values.
+hi] | null, ...}``; the per-cable ``radii`` other than the limiting one are floating-point values; ``failed_paths``:
+homotopy paths of the radii (or of the path index) that failed.
+
+Exit status 3 (named on stderr) when any configuration has failed paths: critical points of its radii may be
+missing (its r_min stays proven when ``certified``); 2 on bad input.
 """
 
 from __future__ import annotations
 
 import json
+import sys
 import time
 from dataclasses import replace
 
@@ -35,7 +40,7 @@ import numpy as np
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import finite
+from .common import INCOMPLETE, finite
 from cdpr_algebra.report.jsonable import jsonable
 
 
@@ -93,6 +98,7 @@ def _entry(cc, radii=None, safety=None, unc=None) -> dict:
         d["certified"] = radii.certified
         d["radius_certificate"] = radii.radius_certificate
         d["nearest_point"] = radii.nearest
+        d["failed_paths"] = int(radii.failed_paths)
     if safety is not None:
         d["safe_nearby"] = safety.safe
         d["nearest_sub_configuration"] = safety.nearest
@@ -267,4 +273,12 @@ def run(args) -> int:
             f"{head['mode']} {head['path']['expressions']} over {head['path']['ranges']}"
         print(f"{robot.name}: cable configurations, {where}, angles {angles}")
         print(_table(jsonable(entries), head))
+    failed = [e for e in entries if e.get("failed_paths")]
+    if failed:
+        print(f"cdpr: incomplete: homotopy paths failed for {len(failed)} configuration(s), so critical points of "
+              f"their radii may be missing (exit status 3); an r_min marked certified is proven all the same:",
+              file=sys.stderr)
+        for e in failed:
+            print(f"  {e['cables']}: {e['failed_paths']} failed path(s)", file=sys.stderr)
+        return INCOMPLETE
     return 0
