@@ -68,3 +68,26 @@ def test_api_solves_a_published_example():
     s = result.solutions[0]
     cert = cdpr_algebra.certify(robot, robot.lengths, [c - 1 for c in s.taut], s.position, s.rotation, s.tensions)
     assert cert.certified and cert.reason is None
+
+
+def test_every_result_states_its_status():
+    """One vocabulary: every solver's result has ``status``, ``seconds`` and ``to_dict()`` with "status" (values
+    computed on the shipped examples, each checked against what the result proves)."""
+    import numpy as np
+
+    robot1 = cdpr_algebra.load_robot(ROOT / "examples" / "seed000_test1.toml")
+    dgp = cdpr_algebra.solve_dgp(robot1)
+    assert dgp.status == dgp.to_dict()["status"] == "complete"
+    assert {s.to_dict()["status"] for s in dgp.subproblems} == {"complete"}
+    igp = cdpr_algebra.solve_igp_orientation(cdpr_algebra.load_robot(ROOT / "examples" / "seed004_table1.toml"),
+                                             np.eye(3))
+    assert igp.status == igp.to_dict()["status"] == "complete" and all(s.certified for s in igp.real_solutions)
+    robot8 = cdpr_algebra.load_robot(ROOT / "examples" / "seed002_8cables.toml")
+    r = cdpr_algebra.robustness_radius(robot8, (0, 1, 2), [1, 2, 3, 4, 5, 6], certify=True)
+    assert r.status == r.to_dict()["status"] and r.status == ("certified" if r.certified else r.status)
+    from cdpr_algebra.bp.search import solve_taut_set_interval
+
+    sub = solve_taut_set_interval(robot1, robot1.lengths, (0, 1, 2))
+    assert sub.status == sub.to_dict()["status"] == ("complete" if not sub.undecided else "undecided")
+    for res in (dgp, igp, r, sub):
+        assert res.seconds >= 0

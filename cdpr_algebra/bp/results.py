@@ -103,8 +103,13 @@ class IntervalSubproblem:
     def complete(self) -> bool:
         return not self.undecided
 
+    @property
+    def status(self) -> str:
+        """'complete' (every admissible equilibrium proven, none undecided), 'skipped' or 'undecided'."""
+        return "skipped" if self.skipped else ("complete" if self.complete else "undecided")
+
     def to_dict(self) -> dict:
-        return {"taut": list(self.taut), "admissible": self.admissible, "complete": self.complete,
+        return {"taut": list(self.taut), "status": self.status, "admissible": self.admissible, "complete": self.complete,
                 "solutions": [s.to_dict() for s in self.solutions],
                 "undecided": [u.to_dict() for u in self.undecided], "boxes": self.boxes,
                 "bisections": self.bisections, "proven_inadmissible": self.proven_inadmissible,
@@ -127,6 +132,11 @@ class IntervalDGPResult:
     def by_m(self, m: int) -> tuple:
         return tuple(s for s in self.solutions if len(s.taut) == m)
 
+    @property
+    def status(self) -> str:
+        """'complete' when every subproblem is, else 'undecided' (some box undecided or subproblem skipped)."""
+        return "complete" if all(s.status == "complete" for s in self.subproblems) else "undecided"
+
     def to_dict(self) -> dict:
-        return {"subproblems": [s.to_dict() for s in self.subproblems], "seconds": self.seconds,
+        return {"status": self.status, "subproblems": [s.to_dict() for s in self.subproblems], "seconds": self.seconds,
                 "admissible": len(self.solutions), "undecided": len(self.undecided)}

@@ -239,8 +239,14 @@ class PathRadii:
         d["singular"] = float(self.singular)
         return d
 
+    @property
+    def status(self) -> str:
+        """'incomplete' when homotopy paths failed, else 'float search' (the index is a floating-point value)."""
+        return "incomplete" if self.failed_paths else "float search"
+
     def to_dict(self) -> dict:
-        return jsonable({"cables": [c + 1 for c in self.cables], "path": self.spec.to_dict(), "valid": self.valid,
+        return jsonable({"status": self.status, "cables": [c + 1 for c in self.cables], "path": self.spec.to_dict(),
+                         "valid": self.valid,
                          "crossings": list(self.crossings), "radii": self.radii_by_number(), "rmin": self.index,
                          "limiting": self.limiting + 1 if isinstance(self.limiting, (int, np.integer)) else self.limiting,
                          "where": self.where, "failed_paths": self.failed_paths, "seconds": self.seconds,

@@ -167,8 +167,19 @@ class CCRadii:
         d["singular"] = float(self.singular)
         return d
 
+    @property
+    def status(self) -> str:
+        """'certified' (r_min proven: critical point and nearest-ness), 'critical point certified' (nearest-ness a
+        float search), 'incomplete' (homotopy paths failed, r_min not certified) or 'float search'."""
+        if self.certified:
+            return "certified"
+        if self.failed_paths:
+            return "incomplete"
+        rc = self.radius_certificate or {}
+        return "critical point certified" if rc.get("critical_point") == "certified" else "float search"
+
     def to_dict(self) -> dict:
-        return jsonable({"cables": [c + 1 for c in self.cables], "position": self.position,
+        return jsonable({"status": self.status, "cables": [c + 1 for c in self.cables], "position": self.position,
                          "tensions": self.tensions, "radii": self.radii_by_number(), "rmin": self.rmin,
                          "limiting": self.limiting + 1 if isinstance(self.limiting, (int, np.integer)) else self.limiting,
                          "nearest": self.nearest, "failed_paths": self.failed_paths, "certified": self.certified,

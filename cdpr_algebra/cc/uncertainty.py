@@ -301,8 +301,13 @@ class UncertaintyResult:
     seconds: float
     reason: str | None = None
 
+    @property
+    def status(self) -> str:
+        """'robust' (proven), 'not robust' (verified counterexample) or 'undecided'."""
+        return {True: "robust", False: "not robust", None: "undecided"}[self.robust]
+
     def to_dict(self) -> dict:
-        return jsonable({"cables": [c + 1 for c in self.cables], "position": self.position,
+        return jsonable({"status": self.status, "cables": [c + 1 for c in self.cables], "position": self.position,
                          "tolerances": self.tolerances, "robust": self.robust, "tension_bounds": self.tension_bounds,
                          "equilibrium_box": self.equilibrium_box, "counterexample": self.counterexample,
                          "boxes": self.boxes, "seconds": self.seconds, "reason": self.reason})

@@ -78,7 +78,7 @@ class SubproblemComparison:
         return {True: "agree", False: "disagree", None: "not compared"}[self.agree]
 
     def to_dict(self) -> dict:
-        return {"taut": list(self.taut), "homotopy": self.homotopy, "interval": self.interval,
+        return {"taut": list(self.taut), "status": self.status, "homotopy": self.homotopy, "interval": self.interval,
                 "undecided": self.undecided, "agree": self.agree, "compared": self.compared,
                 "homotopy_only": [s.to_dict() for s in self.homotopy_only],
                 "interval_only": [s.to_dict() for s in self.interval_only],
@@ -112,8 +112,13 @@ class CrosscheckResult:
     def agreements(self) -> tuple:
         return tuple(c for c in self.comparisons if c.agree is True)
 
+    @property
+    def status(self) -> str:
+        """'disagree' if any subproblem disagrees, else 'not compared' if any was not compared, else 'agree'."""
+        return "disagree" if self.disagreements else ("not compared" if self.not_compared else "agree")
+
     def to_dict(self) -> dict:
-        return {"robot": self.robot, "lengths": jsonable(self.lengths),
+        return {"status": self.status, "robot": self.robot, "lengths": jsonable(self.lengths),
                 "agree": True if self.agree else (False if self.disagreements else None),
                 "summary": {"subproblems": len(self.comparisons), "agree": len(self.agreements),
                             "disagree": len(self.disagreements), "not_compared": len(self.not_compared)},

@@ -17,7 +17,6 @@ sympy family and a dense solve in tests/test_dgp_kernels.py.  One compiled funct
 from __future__ import annotations
 
 import numba as nb
-import numpy as np
 from numba import types as nbt
 
 from cdpr_algebra.homotopy.compiled import APPLY_SIG, FACTOR_SIG, lu_apply_sparse_lead, lu_factor_sparse_lead

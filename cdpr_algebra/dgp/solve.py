@@ -176,8 +176,13 @@ class DGPSubproblem:
     def at_infinity(self) -> int:
         return self.outcomes["at_infinity"]
 
+    @property
+    def status(self) -> str:
+        """'complete' or 'incomplete' (see ``complete``)."""
+        return "complete" if self.complete else "incomplete"
+
     def to_dict(self) -> dict:
-        return {"taut": list(self.taut), "paths": self.paths, "outcomes": dict(self.outcomes),
+        return {"taut": list(self.taut), "status": self.status, "paths": self.paths, "outcomes": dict(self.outcomes),
                 "failures": dict(self.failures), "complete": self.complete, "generic_count": self.generic_count,
                 "certified": self.certified, "certified_real": self.certified_real,
                 "uncertified": dict(self.uncertified),

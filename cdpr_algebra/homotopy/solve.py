@@ -22,7 +22,6 @@ import numpy as np
 from .endgame import SolveOptions, duplicate_groups, mp_path, mp_track, refine
 from .projective import from_chart, to_chart
 from .results import FAILURES, PATH_JUMPING, SINGULAR, SUCCESS, Solution, SolveResult, TrackResult
-from .homotopies import ParameterHomotopy
 from .start_systems import multi_homogeneous, parameter_homotopy, random_gamma, total_degree
 from .systems import PolynomialSystem
 from .endgame import track_paths

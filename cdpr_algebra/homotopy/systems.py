@@ -37,7 +37,6 @@ paths that the tracker retries in higher precision.
 from __future__ import annotations
 
 import hashlib
-from dataclasses import dataclass
 from typing import Sequence
 
 import numpy as np

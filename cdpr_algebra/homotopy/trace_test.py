@@ -45,7 +45,7 @@ the family (e.g. a component where some unknown is identically zero) are outside
 from __future__ import annotations
 
 import time
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 

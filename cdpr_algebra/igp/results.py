@@ -176,9 +176,18 @@ class IGPResult:
     def real_solutions(self) -> tuple:
         return tuple(s for s in self.solutions if s.real)
 
+    @property
+    def status(self) -> str:
+        """'solution set' (no isolated solution: ``solution_set`` describes the continuum or says it is empty),
+        'complete' (every real solution certified), or 'uncertified' (some real solution without a certificate)."""
+        if self.solution_set is not None:
+            return "solution set"
+        return "complete" if all(s.certified for s in self.real_solutions) else "uncertified"
+
     def to_dict(self, include_complex: bool = False) -> dict:
         sols = self.solutions if include_complex else self.real_solutions
         return {
+            "status": self.status,
             "problem": self.problem,
             "solutions": [s.to_dict() for s in sols],
             "count": {"total": len(self.solutions), "real": len(self.real_solutions),
