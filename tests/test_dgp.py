@@ -213,13 +213,15 @@ def test_cli_json_contract(tmp_path, capsys):
     assert main(["dgp", str(path), "--jobs", "1", "--json"]) == 0
     cap = capsys.readouterr()
     out = json.loads(cap.out)
-    assert set(out) == {"complete", "incomplete", "outcomes", "solutions", "subproblems", "seconds"}
-    assert out["complete"] is True and out["incomplete"] == []
+    assert set(out) == {"status", "complete", "incomplete", "outcomes", "solutions", "subproblems", "seconds", "seed",
+                        "options"}
+    assert out["status"] == "complete" and out["complete"] is True and out["incomplete"] == [] and out["seed"] == 0
     assert len(out["subproblems"]) == 3 and "[3/3]" in cap.err
     for sub in out["subproblems"]:
-        assert set(sub) == {"taut", "paths", "outcomes", "failures", "complete", "generic_count", "finite", "real",
-                            "admissible", "failed_paths", "seconds", "skipped", "certified", "certified_real",
+        assert set(sub) == {"taut", "status", "paths", "outcomes", "failures", "complete", "generic_count", "finite",
+                            "real", "admissible", "failed_paths", "seconds", "skipped", "certified", "certified_real",
                             "uncertified"}
+        assert sub["status"] == "complete"
         assert sum(sub["outcomes"].values()) == sub["paths"] == sub["generic_count"] and sub["complete"]
         assert sub["certified"] in (None, sub["outcomes"]["regular"]) and sub["uncertified"] == {}
     assert out["outcomes"] == {k: sum(s["outcomes"][k] for s in out["subproblems"]) for k in out["outcomes"]}
