@@ -44,6 +44,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from flint import arb
 
+from cdpr_algebra.generated.taut_equations import taut_equations
 from cdpr_algebra.model.taut_equations import encode
 from cdpr_algebra.intervals.balls import bounds, krawczyk_certify, sign, symmetric_inertia
 from cdpr_algebra.report.jsonable import jsonable
@@ -61,7 +62,8 @@ def _skew_rows(a):
 
 
 def taut_system(x, A, b, g, f, rho2=None, jacobian: bool = True):
-    """F(x) and dF/dx of :func:`cdpr_algebra.model.taut_equations.taut_family` in plain arithmetic (floats, arb balls, ...).
+    """F(x) and dF/dx of :func:`cdpr_algebra.model.taut_equations.taut_family` in plain arithmetic (floats, arb balls,
+    ...): the generated :func:`cdpr_algebra.generated.taut_equations.taut_equations` on numpy object arrays.
 
     x = (p, u, v, w, lam_1..lam_m); A, b: m points (world exit points, platform anchors), g: g', f: Q d;
     ``rho2``: the m squared lengths, or None to leave the length equations out (IGP).  Rows: u.u - 1, v.v - 1,
@@ -69,66 +71,17 @@ def taut_system(x, A, b, g, f, rho2=None, jacobian: bool = True):
     ``jacobian=False`` returns (F, None).
     """
     m = len(A)
-    p, u, v, w = x[0:3], x[3:6], x[6:9], x[9:12]
-    lam = x[12:12 + m]
-    B = [[p[k] + bi[0] * u[k] + bi[1] * v[k] + bi[2] * w[k] for k in range(3)] for bi in b]
-    s = [[B[i][k] - A[i][k] for k in range(3)] for i in range(m)]
-    G = [p[k] + g[0] * u[k] + g[1] * v[k] + g[2] * w[k] for k in range(3)]
-    BxA = [(B[i][1] * A[i][2] - B[i][2] * A[i][1], B[i][2] * A[i][0] - B[i][0] * A[i][2],
-            B[i][0] * A[i][1] - B[i][1] * A[i][0]) for i in range(m)]
-    F = [u[0] * u[0] + u[1] * u[1] + u[2] * u[2] - 1, v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - 1,
-         u[0] * v[0] + u[1] * v[1] + u[2] * v[2],
-         w[0] - (u[1] * v[2] - u[2] * v[1]), w[1] - (u[2] * v[0] - u[0] * v[2]), w[2] - (u[0] * v[1] - u[1] * v[0])]
-    if rho2 is not None:
-        F += [s[i][0] * s[i][0] + s[i][1] * s[i][1] + s[i][2] * s[i][2] - rho2[i] for i in range(m)]
-    F += [f[k] - sum(lam[i] * s[i][k] for i in range(m)) for k in range(3)]
-    Gxf = [G[1] * f[2] - G[2] * f[1], G[2] * f[0] - G[0] * f[2], G[0] * f[1] - G[1] * f[0]]
-    F += [sum(lam[i] * BxA[i][k] for i in range(m)) + Gxf[k] for k in range(3)]
-    if not jacobian:
-        return F, None
     n = 12 + m
-    J = []
-    r = [0] * n
-    r[_U:_U + 3] = [2 * u[0], 2 * u[1], 2 * u[2]]
-    J.append(r)
-    r = [0] * n
-    r[_V:_V + 3] = [2 * v[0], 2 * v[1], 2 * v[2]]
-    J.append(r)
-    r = [0] * n
-    r[_U:_U + 3] = v
-    r[_V:_V + 3] = u
-    J.append(r)
-    sv, su = _skew_rows(v), _skew_rows(u)  # d(w - u x v)/du = skew(v), d/dv = -skew(u)
-    for k in range(3):
-        r = [0] * n
-        r[_U:_U + 3] = sv[k]
-        r[_V:_V + 3] = [-su[k][0], -su[k][1], -su[k][2]]
-        r[_W + k] = 1
-        J.append(r)
-    if rho2 is not None:
-        for i in range(m):
-            t = [2 * s[i][0], 2 * s[i][1], 2 * s[i][2]]
-            r = t + [b[i][c] * t[k] for c in range(3) for k in range(3)] + [0] * m
-            J.append(r)
-    sig = sum(lam)
-    sig_b = [sum(lam[i] * b[i][c] for i in range(m)) for c in range(3)]
-    for k in range(3):
-        r = [0] * n
-        r[_P + k] = -sig
-        r[_U + k] = -sig_b[0]
-        r[_V + k] = -sig_b[1]
-        r[_W + k] = -sig_b[2]
-        r[_LAM:] = [-s[i][k] for i in range(m)]
-        J.append(r)
-    # d/dp = -skew(sum lam_i A_i + f); d/du = -skew(sum lam_i b_ix A_i + g_x f); same for v, w
-    lin = [[sum(lam[i] * A[i][k] for i in range(m)) + f[k] for k in range(3)]]
-    lin += [[sum(lam_b * A[i][k] for i, lam_b in enumerate([lam[i] * b[i][c] for i in range(m)])) + g[c] * f[k]
-             for k in range(3)] for c in range(3)]
-    sk = [_skew_rows(a) for a in lin]
-    for k in range(3):
-        r = [-e for blk in range(4) for e in sk[blk][k]] + [BxA[i][k] for i in range(m)]
-        J.append(r)
-    return F, J
+    p = ([c for a in A for c in a] + (list(rho2) if rho2 is not None else [0] * m) + [c for bi in b for c in bi]
+         + list(g) + list(f))
+    F = np.zeros(n, dtype=object)
+    J = np.zeros((n, n), dtype=object)
+    taut_equations(list(x), p, None, F, J, None, False)
+    rows = range(n) if rho2 is not None else [r for r in range(n) if not 6 <= r < 6 + m]
+    Fl = [F[r] for r in rows]
+    if not jacobian:
+        return Fl, None
+    return Fl, [list(J[r]) for r in rows]
 
 
 def _select(F, J, rows, cols):

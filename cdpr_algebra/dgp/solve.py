@@ -69,7 +69,7 @@ from .one_cable import one_cable_equilibria
 from cdpr_algebra.homotopy.results import FAILURES, OUTCOMES, outcome_counts
 from cdpr_algebra.report.jsonable import jsonable
 from cdpr_algebra.model.pose import angles_from_matrix, rotation_taking
-from cdpr_algebra.model.stability import skew_stack, stability_classes
+from cdpr_algebra.model.stability import stability_classes
 
 __all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune"]
 
@@ -247,8 +247,9 @@ class DGPResult:
 
 # ---------------------------------------------------------------------------------------------
 class FastTautSystem:
-    """:func:`cdpr_algebra.model.taut_equations.taut_family` (m) with hand-written vectorized evaluators of F, dF/dx, dF/dp (the
-    same equations in the same order; checked against the compiled sympy evaluators in tests/test_dgp.py).
+    """:func:`cdpr_algebra.model.taut_equations.taut_family` (m) with compiled evaluators of F, dF/dx, dF/dp generated
+    from it (``derivations/derive_taut_equations.py``; checked against the sympy family's own evaluators in
+    tests/test_dgp.py).
     Everything else (name, hash, equations, mpmath evaluators, used by the projective retries) is the
     sympy family's."""
 
@@ -282,90 +283,24 @@ class FastTautSystem:
 
         return taut_fj, taut_fjt, taut_factor, taut_apply
 
-    def _unpack(self, x, p):
-        m = self.mm
+    def _eval(self, x, p, jac: bool, jacp: bool):
+        """F, dF/dx (``jac``), dF/dp (``jacp``) at the rows of x: the generated evaluators of
+        :mod:`cdpr_algebra.generated.taut_equations`, compiled and looped over the rows (:mod:`.kernels`)."""
+        from .kernels import taut_fj_batch, taut_jp_batch
+
         x = np.asarray(x, dtype=complex)
         if x.ndim == 1:
             x = x[None, :]
         N = len(x)
-        p = np.broadcast_to(np.asarray(p, dtype=complex), (N, self.m))
-        A = p[:, :3 * m].reshape(N, m, 3)
-        r2 = p[:, 3 * m:4 * m]
-        b = p[:, 4 * m:7 * m].reshape(N, m, 3)
-        g = p[:, 7 * m:7 * m + 3]
-        f = p[:, 7 * m + 3:7 * m + 6]
-        P, u, v, w, lam = x[:, 0:3], x[:, 3:6], x[:, 6:9], x[:, 9:12], x[:, 12:12 + m]
-        return N, A, r2, b, g, f, P, u, v, w, lam
-
-    def _eval(self, x, p, jac: bool, jacp: bool):
-        m = self.mm
-        N, A, r2, b, g, f, P, u, v, w, lam = self._unpack(x, p)
-        Rm = np.stack([u, v, w], axis=-1)  # (N, 3, 3) columns u, v, w
-        B = P[:, None, :] + np.einsum("nkc,nmc->nmk", Rm, b)  # (N, m, 3)
-        G = P + np.einsum("nkc,nc->nk", Rm, g)
-        s = B - A
+        X = np.ascontiguousarray(x)
+        P = np.ascontiguousarray(np.broadcast_to(np.asarray(p, dtype=complex), (N, self.m)))
         F = np.empty((N, self.neq), dtype=complex)
-        F[:, 0] = np.einsum("nk,nk->n", u, u) - 1
-        F[:, 1] = np.einsum("nk,nk->n", v, v) - 1
-        F[:, 2] = np.einsum("nk,nk->n", u, v)
-        from cdpr_algebra.model.statics import cross
-
-        uv = cross(u, v)
-        F[:, 3:6] = w - uv
-        F[:, 6:6 + m] = np.einsum("nmk,nmk->nm", s, s) - r2
-        F[:, 6 + m:9 + m] = -np.einsum("nm,nmk->nk", lam, s) + f
-        BA = cross(B, A)  # (N, m, 3)
-        F[:, 9 + m:12 + m] = cross(G, f) + np.einsum("nm,nmk->nk", lam, BA)
-        if not jac:
-            return F, None, None
-        J = np.zeros((N, self.neq, self.n), dtype=complex)
-        J[:, 0, 3:6] = 2 * u
-        J[:, 1, 6:9] = 2 * v
-        J[:, 2, 3:6] = v
-        J[:, 2, 6:9] = u
-        J[:, 3:6, 3:6] = skew_stack(v)
-        J[:, 3:6, 6:9] = -skew_stack(u)
-        J[:, 3:6, 9:12] = np.eye(3)
-        # lengths: dE_i/dp = 2 s_i, dE_i/d(u, v, w) = 2 b_ic s_i
-        J[:, 6:6 + m, 0:3] = 2 * s
-        for c in range(3):
-            J[:, 6:6 + m, 3 + 3 * c:6 + 3 * c] = 2 * b[:, :, c, None] * s
-        # force: -sum lam_i (B_i - A_i) + f
-        sl = lam.sum(axis=1)
-        lb = np.einsum("nm,nmc->nc", lam, b)  # (N, 3)
-        eye = np.eye(3)
-        J[:, 6 + m:9 + m, 0:3] = -sl[:, None, None] * eye
-        for c in range(3):
-            J[:, 6 + m:9 + m, 3 + 3 * c:6 + 3 * c] = -lb[:, c, None, None] * eye
-        J[:, 6 + m:9 + m, 12:12 + m] = -np.swapaxes(s, 1, 2)
-        # moment: G x f + sum lam_i B_i x A_i; d(G x f)/dG = -[f]x, d(B x A)/dB = -[A]x
-        Sf = skew_stack(f)  # (N, 3, 3)
-        SA = skew_stack(A)
-        lSA = np.einsum("nm,nmij->nij", lam, SA)
-        J[:, 9 + m:12 + m, 0:3] = -Sf - lSA
-        for c in range(3):
-            J[:, 9 + m:12 + m, 3 + 3 * c:6 + 3 * c] = -g[:, c, None, None] * Sf - np.einsum(
-                "nm,nmij->nij", lam * b[:, :, c], SA)
-        J[:, 9 + m:12 + m, 12:12 + m] = np.swapaxes(BA, 1, 2)
+        J = np.zeros((N if jac else 1, self.neq, self.n), dtype=complex)
+        taut_fj_batch(X, P, F, J, jac)
         if not jacp:
-            return F, J, None
+            return F, (J if jac else None), None
         JP = np.zeros((N, self.neq, self.m), dtype=complex)
-        ia, ir, ib, ig, i_f = 0, 3 * m, 4 * m, 7 * m, 7 * m + 3
-        SB = skew_stack(B)
-        for i in range(m):
-            # lengths
-            JP[:, 6 + i, ia + 3 * i:ia + 3 * i + 3] = -2 * s[:, i]
-            JP[:, 6 + i, ir + i] = -1
-            JP[:, 6 + i, ib + 3 * i:ib + 3 * i + 3] = 2 * np.einsum("nkc,nk->nc", Rm, s[:, i])
-            # force
-            JP[:, 6 + m:9 + m, ia + 3 * i:ia + 3 * i + 3] = lam[:, i, None, None] * eye
-            JP[:, 6 + m:9 + m, ib + 3 * i:ib + 3 * i + 3] = -lam[:, i, None, None] * Rm
-            # moment
-            JP[:, 9 + m:12 + m, ia + 3 * i:ia + 3 * i + 3] = lam[:, i, None, None] * SB[:, i]
-            JP[:, 9 + m:12 + m, ib + 3 * i:ib + 3 * i + 3] = -lam[:, i, None, None] * (SA[:, i] @ Rm)
-        JP[:, 6 + m:9 + m, i_f:i_f + 3] = eye
-        JP[:, 9 + m:12 + m, ig:ig + 3] = -Sf @ Rm
-        JP[:, 9 + m:12 + m, i_f:i_f + 3] = skew_stack(G)
+        taut_jp_batch(X, P, JP)
         return F, J, JP
 
     def evaluate(self, x, p=None):
