@@ -106,6 +106,34 @@ def _block(assignments, indent):
     return lines
 
 
+def _split_block(main, extra, indent, extra_head):
+    """Lines for the assignments ``main`` and, under ``if with_ht:`` (after ``extra_head`` lines), ``extra``, with
+    common subexpressions shared across both (one sympy.cse): temporaries that ``main`` needs come first, the others
+    only inside the if-block."""
+    exprs = [e for _, e in main] + [e for _, e in extra]
+    subs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("t"), order="none")
+    deps = {sym: val.free_symbols for sym, val in subs}
+    need = set()
+    stack = [x for e in reduced[:len(main)] for x in e.free_symbols if x in deps]
+    while stack:
+        x = stack.pop()
+        if x not in need:
+            need.add(x)
+            stack.extend(y for y in deps[x] if y in deps)
+    pad, pad2 = " " * indent, " " * (indent + 4)
+
+    def line(p, target, e):
+        op = "+=" if target.endswith("+") else "="
+        return f"{p}{target.rstrip('+').rstrip()} {op} {_pow_to_mul(e)}"
+
+    lines = [f"{pad}{sym} = {_pow_to_mul(val)}" for sym, val in subs if sym in need]
+    lines += [line(pad, t, e) for (t, _), e in zip(main, reduced[:len(main)])]
+    lines += [f"{pad}if with_ht:"] + [pad2 + h for h in extra_head]
+    lines += [f"{pad2}{sym} = {_pow_to_mul(val)}" for sym, val in subs if sym not in need]
+    lines += [line(pad2, t, e) for (t, _), e in zip(extra, reduced[len(main):])]
+    return lines
+
+
 def _nonzero(rows, variables):
     """{(row, col): derivative} for the structurally nonzero derivatives (kept factored)."""
     out = {}
@@ -137,13 +165,12 @@ def generate() -> dict[str, str]:
     asg = [(f"F[{r}]", e) for r, e in enumerate(rot)] + [(f"J[{r}, {c}]", e) for (r, c), e in sorted(jr.items())]
     asg += [(f"s{k}", e) for k, e in enumerate(glob)]
     asg += [(f"j{r}_{c}", jg.get((r, c), sp.Integer(0))) for r, c in acc]
-    L += _block(asg, 4)
     hg = [sum(sp.diff(e, s) * d[s] for s in gpar) for e in glob]
-    L += ["    h0 = h1 = h2 = h3 = h4 = h5 = 0.0", "    if with_ht:"]
-    L += [f"        {d[s]} = dp[ig + {k}]" for k, s in enumerate(gpar[:3])]
-    L += [f"        {d[s]} = dp[i_f + {k}]" for k, s in enumerate(gpar[3:])]
-    L += [f"        Ht[{r}] = 0.0" for r in range(6)]
-    L += _block([(f"h{k}", e) for k, e in enumerate(hg)], 8)
+    L += ["    h0 = h1 = h2 = h3 = h4 = h5 = 0.0"]
+    head = [f"{d[s]} = dp[ig + {k}]" for k, s in enumerate(gpar[:3])]
+    head += [f"{d[s]} = dp[i_f + {k}]" for k, s in enumerate(gpar[3:])]
+    head += [f"Ht[{r}] = 0.0" for r in range(6)]
+    L += _split_block(asg, [(f"h{k}", e) for k, e in enumerate(hg)], 4, head)
     # the cables
     L += ["    for i in range(m):"]
     L += [f"        {s} = p[ia + 3 * i + {k}]" for k, s in enumerate(cpar[:3])]
@@ -155,14 +182,12 @@ def generate() -> dict[str, str]:
     asg += [(f"s{k} +", e) for k, e in enumerate(part)]
     asg += [(f"j{r}_{c} +", e) for (r, c), e in sorted(jp.items())]
     asg += [(f"J[{'rf' if k < 3 else 'rm'} + {k % 3}, 12 + i]", sp.diff(e, lam)) for k, e in enumerate(part)]
-    L += _block(asg, 8)
     hl = sum(sp.diff(length, s) * d[s] for s in cpar)
     hp = [sum(sp.diff(e, s) * d[s] for s in cpar) for e in part]
-    L += ["        if with_ht:"]
-    L += [f"            {d[s]} = dp[ia + 3 * i + {k}]" for k, s in enumerate(cpar[:3])]
-    L += [f"            {d[cpar[3]]} = dp[ir + i]"]
-    L += [f"            {d[s]} = dp[ib + 3 * i + {k}]" for k, s in enumerate(cpar[4:])]
-    L += _block([("Ht[6 + i]", hl)] + [(f"h{k} +", e) for k, e in enumerate(hp)], 12)
+    head = [f"{d[s]} = dp[ia + 3 * i + {k}]" for k, s in enumerate(cpar[:3])]
+    head += [f"{d[cpar[3]]} = dp[ir + i]"]
+    head += [f"{d[s]} = dp[ib + 3 * i + {k}]" for k, s in enumerate(cpar[4:])]
+    L += _split_block(asg, [("Ht[6 + i]", hl)] + [(f"h{k} +", e) for k, e in enumerate(hp)], 8, head)
     L += [f"    F[{'rf' if k < 3 else 'rm'} + {k % 3}] = s{k}" for k in range(6)]
     L += [f"    J[{'rf' if r < 3 else 'rm'} + {r % 3}, {c}] = j{r}_{c}" for r, c in acc]
     L += ["    if with_ht:"]

@@ -93,7 +93,7 @@ def _generic(m: int):
     if m not in _GENERIC:
         from cdpr_algebra.homotopy.monodromy import load_instance
 
-        # the residual by the hand-written evaluator; the hash of the sympy family (slow to build: ~0.25 s per m,
+        # the residual by the generated evaluator; the hash of the sympy family (slow to build: ~0.25 s per m,
         # every process) is checked by tests/test_dgp.py::test_stored_generic_sets
         p, X, _ = load_instance(generic_path(m))
         fam = fast_family(m)

@@ -19,8 +19,9 @@ tracker is compiled and cached once for every system): ``fj(x, p, F, J)`` (F and
 workspace A; False when singular) and ``apply(J, A, piv, b, out)`` (out = J^{-1} b from them):
 :func:`dense_factor` / :func:`dense_apply`, or ones that use the system's structure.  A system offers them by a
 method ``compiled_kernels()`` (the DGP: :mod:`cdpr_algebra.dgp.kernels`).  Compiling sympy-generated
-straight-line code with numba instead was measured at 15-30 s for the 3-cable DGP system (821 lines; 110 s
-for 6 cables), which is why the kernels are written by hand.
+fully unrolled straight-line code with numba was measured at 15-30 s for the 3-cable DGP system (821 lines;
+110 s for 6 cables); the DGP's evaluator is instead generated as a loop over the cables of a per-cable template
+(``derivations/derive_taut_equations.py``), one function for every m, compiled in a few seconds.
 
 numba caches compiled code on disk per source file and does not notice edits of another module that a cached
 function calls: after editing this module, delete ``__pycache__/*.nbi`` / ``*.nbc`` next to ``dgp_kernels.py`` too
