@@ -46,10 +46,14 @@ def test_parse_kinds_and_points():
     (["1/t", "0", "2"], "polynomial"),
     (["", "0", "2"], "empty"),
 ])
-def test_parse_errors_name_the_option(exprs, problem):
+def test_parse_errors_name_the_field(exprs, problem):
+    """The library names its own field (the CLI passes its flag, tests/test_cc_cli.py)."""
     with pytest.raises(CdprInputError) as err:
         parse_path(exprs, [(0, 1)])
-    assert err.value.field == "--trajectory" and problem in str(err.value)
+    assert err.value.field == "expressions" and problem in str(err.value)
+    with pytest.raises(CdprInputError) as err:
+        parse_path(exprs, [(0, 1)], option="--trajectory")
+    assert err.value.field == "--trajectory"
 
 
 def test_parse_range_errors():

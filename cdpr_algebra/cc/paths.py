@@ -56,13 +56,13 @@ _FUNCS = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "sqrt": sp.sqrt, "exp": s
 @dataclass(frozen=True)
 class PathSpec:
     """A path: position of G = ``expressions`` (3 sympy expressions) of ``parameters`` (1 or 2 symbols), each in
-    ``ranges``; ``kinds[j]`` is 'polynomial' or 'angular'; ``option`` names the CLI option for error messages."""
+    ``ranges``; ``kinds[j]`` is 'polynomial' or 'angular'; ``option`` names the field in error messages."""
 
     expressions: tuple
     parameters: tuple
     ranges: tuple
     kinds: tuple
-    option: str = "--trajectory"
+    option: str = "expressions"
 
     def point(self, *values) -> np.ndarray:
         subs = dict(zip(self.parameters, values))
@@ -103,7 +103,7 @@ def _parse_one(text: str, names, option: str):
     return expr
 
 
-def range_bound(value, option: str = "--range") -> float:
+def range_bound(value, option: str = "ranges") -> float:
     """A range end: a number, or a constant expression in the syntax of the path expressions (``pi/2``, ``2*pi``,
     ``sqrt(2)``), as a finite float."""
     if isinstance(value, str):
@@ -118,21 +118,21 @@ def range_bound(value, option: str = "--range") -> float:
     return value
 
 
-def parse_path(expressions, ranges, option: str = "--trajectory") -> PathSpec:
+def parse_path(expressions, ranges, option: str = "expressions") -> PathSpec:
     """Parse 3 expression strings of t (one range) or of u, v (two ranges) into a :class:`PathSpec`; range ends
     are numbers or constant expressions (:func:`range_bound`)."""
     if len(expressions) != 3:
         raise CdprInputError(option, f"expected 3 expressions (x, y, z of G), got {len(expressions)}")
     names = ("t",) if len(ranges) == 1 else ("u", "v")
     if len(ranges) not in (1, 2):
-        raise CdprInputError("--range", f"expected 1 (trajectory) or 2 (surface) ranges, got {len(ranges)}")
+        raise CdprInputError("ranges", f"expected 1 (trajectory) or 2 (surface) ranges, got {len(ranges)}")
     rng = []
     for r in ranges:
         if len(r) != 2:
-            raise CdprInputError("--range", f"expected two ends LO HI, got {list(r)}")
+            raise CdprInputError("ranges", f"expected two ends LO HI, got {list(r)}")
         lo, hi = range_bound(r[0]), range_bound(r[1])
         if not lo < hi:
-            raise CdprInputError("--range", f"expected LO < HI, got {list(r)} = [{lo:g}, {hi:g}]")
+            raise CdprInputError("ranges", f"expected LO < HI, got {list(r)} = [{lo:g}, {hi:g}]")
         rng.append((lo, hi))
     exprs = [_parse_one(e, names, option) for e in expressions]
     params = tuple(sp.Symbol(n, real=True) for n in names)
@@ -618,7 +618,7 @@ def path_configurations(robot, spec: PathSpec, rotation=None, cables=None, seed:
     ranked by index (larger first).  With ``cables`` (1-based numbers), only that CC (valid or not)."""
     R = check_pose(robot, (0, 0, 0), rotation)[1]
     if cables is not None:
-        S = parse_cables(robot, cables, "--configuration", size=6)
+        S = parse_cables(robot, cables, "cables", size=6)
         return [path_radii(robot, spec, S, R, seed=seed)]
     start = spec.point(*[a for a, _ in spec.ranges])
     cands = [c.cables for c in valid_configurations(robot, start, R, sizes=[6])]

@@ -270,7 +270,7 @@ def safety(robot, position, cables, rotation=None, radius: float = 0.03, nearest
     search when the exclusion fails or ``nearest`` is asked for (see the module docstring for what is proven)."""
     t0 = time.perf_counter()
     if not (np.isfinite(radius) and radius > 0):
-        raise CdprInputError("--ball", f"expected a radius > 0, got {radius}")
+        raise CdprInputError("radius", f"expected a radius > 0, got {radius}")
     G, R0 = check_pose(robot, position, rotation)
     cables = tuple(cables)
     if len(cables) != 6:

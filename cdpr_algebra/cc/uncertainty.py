@@ -381,7 +381,7 @@ def uncertainty_check(robot, position, cables, rotation=None, dA: float = 0.005,
     t0 = time.perf_counter()
     for name, v in (("dA", dA), ("dB", dB), ("drho", drho)):
         if not (np.isfinite(v) and v >= 0):
-            raise CdprInputError("--uncertainty", f"{name} must be a finite number >= 0, got {v}")
+            raise CdprInputError("tolerances", f"{name} must be a finite number >= 0, got {v}")
     G, R0 = check_pose(robot, position, rotation)
     cables = tuple(cables)
     if len(cables) != 6:

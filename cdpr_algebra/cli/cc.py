@@ -40,7 +40,7 @@ import numpy as np
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import INCOMPLETE, finite
+from .common import INCOMPLETE, as_flags, finite
 from cdpr_algebra.report.jsonable import jsonable
 
 
@@ -248,7 +248,16 @@ def _table(entries, head) -> str:
     return "\n".join(lines)
 
 
+FLAGS = {"ranges": "--range", "cables": "--configuration", "radius": "--ball", "tolerances": "--uncertainty",
+         "position": "--position"}  # library field -> the flag that gave it
+
+
 def run(args) -> int:
+    with as_flags(FLAGS):
+        return _run(args)
+
+
+def _run(args) -> int:
     from cdpr_algebra.model.robot import load_robot
 
     t0 = time.perf_counter()

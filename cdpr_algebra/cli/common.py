@@ -10,7 +10,7 @@ import numpy as np
 
 from cdpr_algebra.model.errors import CdprInputError
 
-__all__ = ["INCOMPLETE", "Parser", "finite", "dgp_lengths"]
+__all__ = ["INCOMPLETE", "Parser", "finite", "dgp_lengths", "as_flags"]
 
 INCOMPLETE = 3  # exit status: a result not proven complete (failed paths, uncertified endpoints), said on stderr
 
@@ -46,3 +46,19 @@ def dgp_lengths(args, robot) -> np.ndarray:
     if robot.lengths is not None:
         return robot.lengths
     raise CdprInputError("--lengths", "no cable lengths: the robot file has none and --lengths is not given")
+
+
+class as_flags:
+    """Context manager: a library input error about ``field`` is re-raised naming the command-line flag that gave
+    it (``flags``: {library field: flag}); the library describes problems in its own terms."""
+
+    def __init__(self, flags: dict):
+        self.flags = flags
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, err, tb):
+        if isinstance(err, CdprInputError) and err.field in self.flags:
+            raise CdprInputError(self.flags[err.field], err.problem, err.source) from None
+        return False
