@@ -25,12 +25,6 @@ TABLES = json.loads((ROOT / "tests" / "data" / "seed000_tables.json").read_text(
 F = Fraction
 
 
-@pytest.fixture(params=["fast", "nextafter"])
-def rounding(request, monkeypatch):
-    monkeypatch.setattr(ib, "ROUNDING", request.param)
-    return request.param
-
-
 def _random_floats(rng, n):
     """Floats of many magnitudes and signs, with exact zeros, tiny and huge values."""
     x = rng.standard_normal(n) * 10.0 ** rng.integers(-20, 20, n)
@@ -50,7 +44,7 @@ def _inside(v: Fraction, lo, hi) -> bool:
     return F(float(lo)) <= v <= F(float(hi))
 
 
-def test_widening_is_at_least_one_ulp(rounding):
+def test_widening_is_at_least_one_ulp():
     rng = np.random.default_rng(0)
     x = np.concatenate([_random_floats(rng, 5000), [0.0, -0.0, 5e-324, -5e-324, 2.0 ** -1022, 1.7976931348623157e308,
                                                    -1.7976931348623157e308, 1.0, -1.0, 0.1]])
@@ -66,7 +60,7 @@ def test_widening_is_at_least_one_ulp(rounding):
 
 
 @pytest.mark.parametrize("op", ["add", "sub", "mul", "div", "sqr", "sqrt"])
-def test_operations_enclose_exact_results(rounding, op):
+def test_operations_enclose_exact_results(op):
     """Enclosure property: the exact (rational) result at the endpoints and at random exact interior points lies in
     the computed interval (for sqrt: lo^2 <= x and hi^2 >= x exactly)."""
     rng = np.random.default_rng(1)
@@ -98,7 +92,7 @@ def test_operations_enclose_exact_results(rounding, op):
                         assert _inside(exact, r.lo[k], r.hi[k]), (op, x, y, r.lo[k], r.hi[k])
 
 
-def test_operations_with_point_operands_and_sums(rounding):
+def test_operations_with_point_operands_and_sums():
     rng = np.random.default_rng(2)
     a = _random_intervals(rng, 300)
     c = _random_floats(rng, 300)

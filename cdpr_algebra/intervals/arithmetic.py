@@ -7,15 +7,14 @@ intervals, e.g. a batch of boxes of shape (nboxes, nvars).  Operations act eleme
 and sqrt to be correctly rounded, so a computed bound differs from the exact result of the operation on the
 (exact) input bounds by at most half an ulp.  Every operation here moves each computed lower bound at least one
 ulp down and each computed upper bound at least one ulp up, so the returned interval contains the exact image of
-the input intervals: all enclosures are rigorous.  With ``ROUNDING = "nextafter"`` the widening is exactly one
-ulp, ``np.nextafter(x, -inf)`` / ``np.nextafter(x, +inf)``.  The default ``"fast"`` widening computes
+the input intervals: all enclosures are rigorous.  The widening computes
 up(x) = x + min(|x| 2^-52 + 2^-900, 1e300) (and down(x) = x - ...) with four array operations, 5-7 times faster
-than ``np.nextafter`` in numpy, and never narrower: for a normal x in [2^e, 2^(e+1)) in magnitude,
+than ``np.nextafter`` (exactly one ulp) in numpy, and never narrower than it: for a normal x in [2^e, 2^(e+1)) in magnitude,
 fl(|x| 2^-52) >= 2^(e-52), the spacing of the floats at x, so the exact x + |x| 2^-52 + ... lies at or beyond the
 neighbouring float and round-to-nearest (monotone) cannot bring it back; for subnormal or zero x the added
 2^-900 exceeds the subnormal spacing 2^-1074 (and keeps widened zeros normal numbers: arithmetic on subnormals is
 about 100 times slower); infinities stay infinite (the cap keeps -inf + inf from making a NaN).
-``tests/test_interval_bp.py`` checks both against ``np.nextafter`` and exact rational arithmetic.  Exact
+``tests/test_interval_bp.py`` checks it against ``np.nextafter`` and exact rational arithmetic.  Exact
 operations (negation, min/max, intersection, hull) are not widened.  Sums are always taken one addition at a
 time (never ``np.sum``, whose pairwise summation has no per-step widening).  Nothing relies on library
 functions without a correct-rounding guarantee (no exp/log/trigonometry).  Constants that are not floats
@@ -60,14 +59,11 @@ _TINY = 2.0 ** -900  # >= the subnormal spacing 2^-1074; large enough that widen
 # stay normal numbers: subnormal arithmetic is ~100x slower on x86
 _FLOOR = 2.0 ** -940  # floor of the terms scaled by ~2^-52 in mr_matmul, so that no subnormal is formed
 _CAP = 1e300  # keeps the widening of +-inf finite (so up(-inf) = -inf, down(inf) = inf)
-ROUNDING = "fast"  # "fast" (default) or "nextafter" (the reference widening, 5-7x slower in numpy)
 
 
 def down(x):
     """A float <= np.nextafter(x, -inf): x moved at least one ulp toward -inf (lower bounds after a rounded
     operation).  Fast form x - min(|x| 2^-52 + 2^-1074, 1e300), see the module docstring."""
-    if ROUNDING == "nextafter":
-        return np.nextafter(x, -_INF)
     t = np.abs(x)
     if type(t) is not np.ndarray:
         return x - np.minimum(t * _U + _TINY, _CAP)
@@ -79,8 +75,6 @@ def down(x):
 
 def up(x):
     """A float >= np.nextafter(x, +inf): x moved at least one ulp toward +inf (upper bounds)."""
-    if ROUNDING == "nextafter":
-        return np.nextafter(x, _INF)
     t = np.abs(x)
     if type(t) is not np.ndarray:
         return x + np.minimum(t * _U + _TINY, _CAP)
