@@ -201,3 +201,24 @@ def test_trace_test_on_a_projection():
     assert tr.status == "failed" and tr.relative > 100 * tr.tol
     with pytest.raises(ValueError, match="separate"):
         compute_trace(S, p, res.q0, res.l, np.concatenate([X, X[:1] + [0, 0, 1]]), res.W10, coordinates=[0, 1])
+
+
+def test_distinct_points_keeps_close_ill_conditioned_solutions_apart():
+    """y = x^2, y = e with e = 5e-15 (a line nearly tangent to a parabola): the roots x = +-7.1e-8 (condition ~1e7)
+    lie closer than the conditioning allowance of double precision (100 * 2.2e-16 * cond), so without
+    arbitrary-precision refinement they are merged; refined, they are two solutions, while copies of one root are
+    still one."""
+    import sympy as sp
+
+    from cdpr_algebra.homotopy.systems import PolynomialSystem
+    from cdpr_algebra.homotopy.trace_test import distinct_points
+
+    x, y, e = sp.symbols("x y e")
+    system = PolynomialSystem([y - x ** 2, y - e], [x, y], [e], name="close_pair")
+    r = np.sqrt(5e-15)
+    X = np.array([[r, 5e-15], [-r, 5e-15], [r * (1 + 1e-12), 5e-15]], dtype=complex)
+    merged, _ = distinct_points(system, [5e-15], X, polish_condition=None)
+    assert len(merged) == 1
+    kept, rec = distinct_points(system, [5e-15], X)
+    assert len(kept) == 2 and rec["polished"] == 3
+    assert sorted(kept[:, 0].real) == pytest.approx([-r, r], rel=1e-12)

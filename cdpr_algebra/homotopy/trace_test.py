@@ -431,14 +431,18 @@ def _coordinates(system, coordinates, W01):
     return cs
 
 
-def distinct_points(system, parameters, X, floor: float = 1e-8, digits_lost: float = 100.0):
+def distinct_points(system, parameters, X, floor: float = 1e-8, digits_lost: float = 100.0,
+                    polish_condition: float | None = 1e6):
     """Distinct solutions among points X of ``system`` at ``parameters``, with a duplicate test that accounts for
     conditioning: after Newton refinement (:func:`.endgame.refine`), two points are one solution when they are
     closer (max-norm, relative to 1 + |x|) than max(floor, digits_lost * 2.2e-16 * cond), cond being the scaled
     condition number of dF/dx at either point (the accuracy double precision allows there).  (A fixed relative
     tolerance such as monodromy's 1e-8 counts an ill-conditioned solution, cond ~ 1e10, found again around each
-    loop, many times.)  Returns (distinct refined points, the best-conditioned of each group; record of the merged
-    groups)."""
+    loop, many times.)  Points with cond > ``polish_condition`` are first refined in arbitrary precision
+    (:func:`_mp_newton`, where the system offers ``mp_functions``); those that converge are accurate to rounding
+    and are compared with ``floor`` alone, so two distinct ill-conditioned solutions closer than the conditioning
+    allowance are not merged.  Returns (distinct refined points, the best-conditioned of each group; record of the
+    merged groups)."""
     from .endgame import refine
 
     X = np.asarray(X, dtype=complex).reshape(-1, system.n)
@@ -447,8 +451,15 @@ def distinct_points(system, parameters, X, floor: float = 1e-8, digits_lost: flo
     p = np.asarray(parameters, dtype=complex)
     Xr, _, res, cond, _ = refine(ParameterHomotopy(system, p, p), X, 0.0)
     cond = np.where(np.isfinite(cond), cond, 1e16)
-    scale = 1 + np.max(np.abs(Xr), axis=1)
     tol = np.maximum(floor, digits_lost * 2.2e-16 * cond)
+    polished = 0
+    if polish_condition is not None and hasattr(system, "mp_functions"):
+        idx = np.flatnonzero(cond > polish_condition)
+        if idx.size:
+            Xr, ok = _mp_newton(system, p, Xr, idx)
+            tol[idx[ok]] = floor
+            polished = int(ok.sum())
+    scale = 1 + np.max(np.abs(Xr), axis=1)
     pi, pj = [], []
     for i in range(len(Xr) - 1):
         d = np.max(np.abs(Xr[i + 1:] - Xr[i]), axis=1) / np.maximum(scale[i + 1:], scale[i])
@@ -460,8 +471,11 @@ def distinct_points(system, parameters, X, floor: float = 1e-8, digits_lost: flo
     merged = [{"size": len(g), "norm": float(np.max(scale[g]) - 1), "condition": float(np.max(cond[g])),
                "spread": float(np.max(np.abs(Xr[g] - Xr[g[0]])) / np.max(scale[g]))}
               for g in groups if len(g) > 1]
-    return Xr[keep], {"rule": f"relative distance <= max({floor:g}, {digits_lost:g} * 2.2e-16 * cond)",
-                      "groups": merged, "max_condition": float(np.max(cond)), "max_residual": float(np.max(res))}
+    rule = f"relative distance <= max({floor:g}, {digits_lost:g} * 2.2e-16 * cond)"
+    if polish_condition is not None:
+        rule += f"; {floor:g} for points of cond > {polish_condition:g} refined in arbitrary precision"
+    return Xr[keep], {"rule": rule, "groups": merged, "max_condition": float(np.max(cond)),
+                      "max_residual": float(np.max(res)), "polished": polished}
 
 
 def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestOptions | None = None,
@@ -628,6 +642,32 @@ def complete_witnesses(slice_, l, W, options: TraceTestOptions | None = None, se
     return W, record
 
 
+def _mp_newton(system, parameters, Y, idx, dps: int = 40, iterations: int = 8):
+    """Points Y[idx] refined by Newton's method in arbitrary precision (mpmath, ``dps`` digits, the system's
+    ``mp_functions``), rounded back to double.  Returns (Y with them replaced, converged mask over idx): converged
+    when the last update is below 10^-(dps - 5) relative (a simple root; Newton stalls at a multiple one)."""
+    import mpmath
+
+    Y = np.array(Y, dtype=complex, copy=True)
+    ok = np.zeros(len(idx), dtype=bool)
+    mF, mJ, _ = system.mp_functions()
+    with mpmath.workdps(dps):
+        pm = [mpmath.mpc(complex(c)) for c in np.asarray(parameters, dtype=complex)]
+        for k, i in enumerate(idx):
+            y = mpmath.matrix([mpmath.mpc(complex(c)) for c in Y[i]])
+            for _ in range(iterations):
+                try:
+                    d = mpmath.lu_solve(mJ(y, pm), -mF(y, pm))
+                except ZeroDivisionError:  # singular Jacobian in mpmath's elimination
+                    break
+                y = y + d
+                if mpmath.norm(d) <= mpmath.mpf(10) ** (-(dps - 5)) * (1 + mpmath.norm(y)):
+                    ok[k] = True
+                    break
+            Y[i] = np.array([complex(c) for c in y])
+    return Y, ok
+
+
 def polish(system, parameters, Y, threshold: float = 1e6, dps: int = 40, iterations: int = 8):
     """Points Y of ``system`` at ``parameters`` whose scaled condition number exceeds ``threshold`` refined by
     Newton's method in arbitrary precision (mpmath, ``dps`` digits; the system's ``mp_functions``), then rounded to
@@ -645,19 +685,7 @@ def polish(system, parameters, Y, threshold: float = 1e6, dps: int = 40, iterati
     idx = np.flatnonzero(cond > threshold)
     if not idx.size or not hasattr(system, "mp_functions"):
         return Y, 0, float(np.max(cond))
-    import mpmath
-
-    mF, mJ, _ = system.mp_functions()
-    with mpmath.workdps(dps):
-        pm = [mpmath.mpc(complex(c)) for c in p]
-        for i in idx:
-            y = mpmath.matrix([mpmath.mpc(complex(c)) for c in Y[i]])
-            for _ in range(iterations):
-                d = mpmath.lu_solve(mJ(y, pm), -mF(y, pm))
-                y = y + d
-                if mpmath.norm(d) <= mpmath.mpf(10) ** (-(dps - 5)) * (1 + mpmath.norm(y)):
-                    break
-            Y[i] = np.array([complex(c) for c in y])
+    Y, _ = _mp_newton(system, p, Y, idx, dps, iterations)
     return Y, int(idx.size), float(np.max(cond))
 
 
