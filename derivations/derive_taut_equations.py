@@ -141,7 +141,7 @@ def _nonzero(rows, variables):
         for c, v in enumerate(variables):
             d = sp.diff(e, v)
             if sp.expand(d) != 0:
-                out[(r, c)] = d
+                out[(r, c)] = sp.factor_terms(d)  # 2*(B - a), not -2*a + 2*B: the evaluation order of s
     return out
 
 
@@ -165,7 +165,7 @@ def generate() -> dict[str, str]:
     asg = [(f"F[{r}]", e) for r, e in enumerate(rot)] + [(f"J[{r}, {c}]", e) for (r, c), e in sorted(jr.items())]
     asg += [(f"s{k}", e) for k, e in enumerate(glob)]
     asg += [(f"j{r}_{c}", jg.get((r, c), sp.Integer(0))) for r, c in acc]
-    hg = [sum(sp.diff(e, s) * d[s] for s in gpar) for e in glob]
+    hg = [sp.factor_terms(sum(sp.diff(e, s) * d[s] for s in gpar)) for e in glob]
     L += ["    h0 = h1 = h2 = h3 = h4 = h5 = 0.0"]
     head = [f"{d[s]} = dp[ig + {k}]" for k, s in enumerate(gpar[:3])]
     head += [f"{d[s]} = dp[i_f + {k}]" for k, s in enumerate(gpar[3:])]
@@ -182,8 +182,8 @@ def generate() -> dict[str, str]:
     asg += [(f"s{k} +", e) for k, e in enumerate(part)]
     asg += [(f"j{r}_{c} +", e) for (r, c), e in sorted(jp.items())]
     asg += [(f"J[{'rf' if k < 3 else 'rm'} + {k % 3}, 12 + i]", sp.diff(e, lam)) for k, e in enumerate(part)]
-    hl = sum(sp.diff(length, s) * d[s] for s in cpar)
-    hp = [sum(sp.diff(e, s) * d[s] for s in cpar) for e in part]
+    hl = sp.factor_terms(sum(sp.diff(length, s) * d[s] for s in cpar))
+    hp = [sp.factor_terms(sum(sp.diff(e, s) * d[s] for s in cpar)) for e in part]
     head = [f"{d[s]} = dp[ia + 3 * i + {k}]" for k, s in enumerate(cpar[:3])]
     head += [f"{d[cpar[3]]} = dp[ir + i]"]
     head += [f"{d[s]} = dp[ib + 3 * i + {k}]" for k, s in enumerate(cpar[4:])]

@@ -18,6 +18,7 @@ from cdpr_algebra.dgp.solve import available_m, fast_family, generic_path
 from cdpr_algebra.homotopy import PolynomialSystem, SolveOptions, TrackerOptions
 from cdpr_algebra.homotopy.monodromy import load_instance, monodromy_solve
 from cdpr_algebra.homotopy.trace_test import (TracePencilSystem, TraceSliceSystem, TraceTestOptions, compute_trace,
+                                              distinct_points,
                                               verify_solution_completeness)
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -222,3 +223,26 @@ def test_distinct_points_keeps_close_ill_conditioned_solutions_apart():
     kept, rec = distinct_points(system, [5e-15], X)
     assert len(kept) == 2 and rec["polished"] == 3
     assert sorted(kept[:, 0].real) == pytest.approx([-r, r], rel=1e-12)
+
+
+@pytest.mark.parametrize("m", [4])
+def test_phcpack_count_recorded_and_contained_in_the_stored_set(m):
+    """PHCpack's blackbox on a random complex instance of the m-cable family (recorded by
+    derivations/certify_generic_dgp.py --phc): its solutions solve that instance (residuals recomputed here), they are
+    distinct, and every one is among the stored set moved to that instance, which has at most as many points as the
+    stored set: PHCpack's independent count confirms all but the stored points it missed, and none beyond."""
+    cert = certificate(m)
+    if "phc" not in cert or "solutions" not in cert["phc"]:
+        pytest.skip(f"no PHCpack run recorded for m = {m}")
+    phc = cert["phc"]
+    fam = fast_family(m)
+    p = _uc(phc["parameters"])
+    S = _uc(phc["solutions"]).reshape(-1, fam.n)
+    F = fam.evaluate(S, p)
+    assert np.max(np.abs(F), axis=1).max() <= 1e-8 * (1 + np.abs(S).max())
+    P, _ = distinct_points(fam, p, S)
+    assert len(P) == phc["phc_distinct"] == phc["regular_all_lam_nonzero"]
+    moved = phc["stored_moved"]
+    _, X, _ = load_instance(generic_path(m))
+    assert moved["phc_unmatched"] == 0 and moved["phc_matched"] == len(P)
+    assert moved["distinct"] <= len(X) and phc["union_distinct"] == moved["distinct"] == len(X)
