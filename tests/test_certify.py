@@ -1,6 +1,6 @@
 """Interval certificates (issue 5): Krawczyk existence/uniqueness, tension signs, slack cables, H_r class.
 
-Independent references: the compiled sympy evaluators of dgp_equations (for the hand-written interval system),
+Independent references: the compiled sympy evaluators of model.taut_equations (for the generated interval system),
 sqrt(2) in arb, exact rational IGP solutions of seed 004 Tables 1-2, the printed tensions of seed 000 Table 1,
 robots built around a known equilibrium with an exactly vanishing tension (Pythagorean lengths, binary
 fractions), and the floating-point stability classes of stability.py.
@@ -39,7 +39,7 @@ def _contains(lo, hi, v, slack=0.0):
 # --------------------------------------------------------------------------------------- generic tools
 @pytest.mark.parametrize("m", [2, 3, 6])
 def test_interval_system_is_the_dgp_family(m):
-    """The hand-written F and dF/dx equal the compiled sympy system of dgp_equations (random points)."""
+    """The generated F and dF/dx equal the compiled sympy system of model.taut_equations (random points)."""
     fam = taut_family(m)
     rng = np.random.default_rng(m)
     for _ in range(3):

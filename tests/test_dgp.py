@@ -20,7 +20,7 @@ needs_m3 = pytest.mark.skipif(not {2, 3} <= set(available_m()), reason="generic 
 
 @pytest.mark.parametrize("m", [2, 3, 4, 5, 6])
 def test_stored_generic_sets(m):
-    """The stored generic solution sets belong to the sympy family of dgp_equations (hash, residual by its
+    """The stored generic solution sets belong to the sympy family of model.taut_equations (hash, residual by its
     evaluator), have the count certified by their trace test (``dgp_generic_m{m}_completeness.json``, written by
     derivations/certify_generic_dgp.py for exactly these numbers: hash checked), distinct points, and the fast family
     agrees in size."""

@@ -1,4 +1,4 @@
-"""Compiled DGP evaluators (dgp_kernels) against the sympy family, and the compiled tracker against the numpy one."""
+"""Compiled DGP evaluators (dgp.kernels, generated) against the sympy family, and the compiled tracker against the numpy one."""
 
 import numpy as np
 import pytest

@@ -36,7 +36,7 @@ class IGPSolution:
     real: bool
     residual: float
     tension_tolerance: float = 0.0
-    certified: bool | None = None  # interval certificate (certify.py); None for complex solutions / not run
+    certified: bool | None = None  # interval certificate (certificates/equilibria.py); None for complex solutions / not run
     certificate: object | None = None  # certify.Certificate
 
     @property
