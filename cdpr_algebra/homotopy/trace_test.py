@@ -45,7 +45,7 @@ the family (e.g. a component where some unknown is identically zero) are outside
 from __future__ import annotations
 
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 
@@ -57,7 +57,7 @@ from .results import STATUSES, SUCCESS
 from .endgame import track_paths
 
 __all__ = ["TraceSliceSystem", "TracePencilSystem", "TraceTestOptions", "TraceResult", "TraceTestResult",
-           "distinct_points", "trace_witnesses", "complete_witnesses", "polish", "compute_trace", "verify_solution_completeness", "random_direction"]
+           "distinct_points", "coinciding", "trace_witnesses", "complete_witnesses", "polish", "compute_trace", "verify_solution_completeness", "random_direction"]
 
 
 def _crandn(rng, *shape):
@@ -431,23 +431,12 @@ def _coordinates(system, coordinates, W01):
     return cs
 
 
-def distinct_points(system, parameters, X, floor: float = 1e-8, digits_lost: float = 100.0,
-                    polish_condition: float | None = 1e6):
-    """Distinct solutions among points X of ``system`` at ``parameters``, with a duplicate test that accounts for
-    conditioning: after Newton refinement (:func:`.endgame.refine`), two points are one solution when they are
-    closer (max-norm, relative to 1 + |x|) than max(floor, digits_lost * 2.2e-16 * cond), cond being the scaled
-    condition number of dF/dx at either point (the accuracy double precision allows there).  (A fixed relative
-    tolerance such as monodromy's 1e-8 counts an ill-conditioned solution, cond ~ 1e10, found again around each
-    loop, many times.)  Points with cond > ``polish_condition`` are first refined in arbitrary precision
-    (:func:`_mp_newton`, where the system offers ``mp_functions``); those that converge are accurate to rounding
-    and are compared with ``floor`` alone, so two distinct ill-conditioned solutions closer than the conditioning
-    allowance are not merged.  Returns (distinct refined points, the best-conditioned of each group; record of the
-    merged groups)."""
+def _close_groups(system, parameters, X, floor, digits_lost, polish_condition):
+    """The points X refined (Newton; points of cond > ``polish_condition`` in arbitrary precision where the system
+    allows it) and grouped by the conditioning-aware duplicate test of :func:`distinct_points`.  Returns
+    (refined points, condition numbers, groups (lists of row indices), number polished, residuals)."""
     from .endgame import refine
 
-    X = np.asarray(X, dtype=complex).reshape(-1, system.n)
-    if not len(X):
-        return X, {"groups": [], "max_condition": None}
     p = np.asarray(parameters, dtype=complex)
     Xr, _, res, cond, _ = refine(ParameterHomotopy(system, p, p), X, 0.0)
     cond = np.where(np.isfinite(cond), cond, 1e16)
@@ -466,7 +455,26 @@ def distinct_points(system, parameters, X, floor: float = 1e-8, digits_lost: flo
         close = np.flatnonzero(d <= np.maximum(tol[i + 1:], tol[i])) + i + 1
         pi += [i] * len(close)
         pj += close.tolist()
-    groups = linked_groups(len(Xr), pi, pj)
+    return Xr, cond, linked_groups(len(Xr), pi, pj), polished, res
+
+
+def distinct_points(system, parameters, X, floor: float = 1e-8, digits_lost: float = 100.0,
+                    polish_condition: float | None = 1e6):
+    """Distinct solutions among points X of ``system`` at ``parameters``, with a duplicate test that accounts for
+    conditioning: after Newton refinement (:func:`.endgame.refine`), two points are one solution when they are
+    closer (max-norm, relative to 1 + |x|) than max(floor, digits_lost * 2.2e-16 * cond), cond being the scaled
+    condition number of dF/dx at either point (the accuracy double precision allows there).  (A fixed relative
+    tolerance such as monodromy's 1e-8 counts an ill-conditioned solution, cond ~ 1e10, found again around each
+    loop, many times.)  Points with cond > ``polish_condition`` are first refined in arbitrary precision
+    (:func:`_mp_newton`, where the system offers ``mp_functions``); those that converge are accurate to rounding
+    and are compared with ``floor`` alone, so two distinct ill-conditioned solutions closer than the conditioning
+    allowance are not merged.  Returns (distinct refined points, the best-conditioned of each group; record of the
+    merged groups)."""
+    X = np.asarray(X, dtype=complex).reshape(-1, system.n)
+    if not len(X):
+        return X, {"groups": [], "max_condition": None}
+    Xr, cond, groups, polished, res = _close_groups(system, parameters, X, floor, digits_lost, polish_condition)
+    scale = 1 + np.max(np.abs(Xr), axis=1)
     keep = sorted(g[int(np.argmin(cond[g]))] for g in groups)
     merged = [{"size": len(g), "norm": float(np.max(scale[g]) - 1), "condition": float(np.max(cond[g])),
                "spread": float(np.max(np.abs(Xr[g] - Xr[g[0]])) / np.max(scale[g]))}
@@ -476,6 +484,21 @@ def distinct_points(system, parameters, X, floor: float = 1e-8, digits_lost: flo
         rule += f"; {floor:g} for points of cond > {polish_condition:g} refined in arbitrary precision"
     return Xr[keep], {"rule": rule, "groups": merged, "max_condition": float(np.max(cond)),
                       "max_residual": float(np.max(res)), "polished": polished}
+
+
+def coinciding(system, parameters, X, floor: float = 1e-8, digits_lost: float = 100.0,
+               polish_condition: float | None = 1e6) -> np.ndarray:
+    """Mask of the points X that coincide with another one of X (the test of :func:`distinct_points`): endpoints
+    of paths from distinct start points that coincide mean a path jumped."""
+    X = np.asarray(X, dtype=complex).reshape(-1, system.n)
+    mask = np.zeros(len(X), dtype=bool)
+    if len(X) < 2:
+        return mask
+    _, _, groups, _, _ = _close_groups(system, parameters, X, floor, digits_lost, polish_condition)
+    for g in groups:
+        if len(g) > 1:
+            mask[list(g)] = True
+    return mask
 
 
 def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestOptions | None = None,
@@ -590,22 +613,29 @@ def complete_witnesses(slice_, l, W, options: TraceTestOptions | None = None, se
         return D
 
     def move(X, la, lb, what, s, detours: int = 2):
-        # paths that fail on the straight segment la -> lb (ill-conditioned points now and then) are tracked again
-        # along another route, la -> a random hyperplane -> lb (``detours`` routes at most)
+        # paths that fail on the straight segment la -> lb (ill-conditioned points now and then), or whose endpoints
+        # coincide (a path jumped: the start points are distinct), are tracked again along another route, la -> a
+        # random hyperplane -> lb, with 100x tighter steps (``detours`` routes at most)
         X = np.asarray(X, dtype=complex).reshape(-1, slice_.n)
         paths = _track(slice_, X, la, lb, o.solve, s)
         ok = np.array([p.status == SUCCESS for p in paths], dtype=bool)
-        Y = [p.endpoint for p in paths if p.status == SUCCESS]
-        rec = {"from": what, "paths": len(paths), "success": int(ok.sum()), "detours": []}
+        E = np.array([p.endpoint for p in paths]).reshape(-1, slice_.n)
+        okidx = np.flatnonzero(ok)
+        jumped = okidx[coinciding(slice_, lb, E[okidx])] if okidx.size else okidx
+        ok[jumped] = False
+        Y = [E[i] for i in np.flatnonzero(ok)]
+        rec = {"from": what, "paths": len(paths), "success": int(ok.sum()), "coinciding": int(len(jumped)),
+               "detours": []}
         todo = X[~ok]
+        tight = replace(o.solve, tracker=o.solve.tracker.tightened(100.0))
         for d in range(detours):
             if not len(todo):
                 break
             mid = _crandn(rng, slice_.m)
-            p1 = _track(slice_, todo, la, mid, o.solve, s + 31 * (d + 1))
+            p1 = _track(slice_, todo, la, mid, tight, s + 31 * (d + 1))
             ok1 = np.array([p.status == SUCCESS for p in p1], dtype=bool)
             Z = np.array([p.endpoint for p in p1 if p.status == SUCCESS]).reshape(-1, slice_.n)
-            p2 = _track(slice_, Z, mid, lb, o.solve, s + 31 * (d + 1) + 1)
+            p2 = _track(slice_, Z, mid, lb, tight, s + 31 * (d + 1) + 1)
             ok2 = np.array([p.status == SUCCESS for p in p2], dtype=bool)
             Y += [p.endpoint for p in p2 if p.status == SUCCESS]
             rec["detours"].append({"paths": int(len(todo)), "success": int(ok2.sum())})
