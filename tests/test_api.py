@@ -85,6 +85,8 @@ def test_every_result_states_its_status():
     robot8 = cdpr_algebra.load_robot(ROOT / "examples" / "seed002_8cables.toml")
     r = cdpr_algebra.robustness_radius(robot8, (0, 1, 2), [1, 2, 3, 4, 5, 6], certify=True)
     assert r.status == r.to_dict()["status"] and r.status == ("certified" if r.certified else r.status)
+    assert r.to_dict()["seed"] == 0 and cdpr_algebra.robustness_radius(robot8, (0, 1, 2), [1, 2, 3, 4, 5, 6],
+                                                                        seed=5).to_dict()["seed"] == 5
     from cdpr_algebra.bp.search import solve_taut_set_interval
 
     sub = solve_taut_set_interval(robot1, robot1.lengths, (0, 1, 2))

@@ -160,6 +160,7 @@ class CCRadii:
     certified: bool | None = None
     certificate: dict | None = field(default=None, compare=False)
     radius_certificate: dict | None = field(default=None, compare=False)
+    seed: int = 0  # of the generic instance and the homotopies (with the robot and pose: what reproduces it)
 
     def radii_by_number(self) -> dict:
         """{"<cable number>": r, ..., "singular": r} (the JSON contract)."""
@@ -184,7 +185,7 @@ class CCRadii:
                          "limiting": self.limiting + 1 if isinstance(self.limiting, (int, np.integer)) else self.limiting,
                          "nearest": self.nearest, "failed_paths": self.failed_paths, "certified": self.certified,
                          "radius_certificate": self.radius_certificate, "certificate": self.certificate,
-                         "seconds": self.seconds})
+                         "seconds": self.seconds, "seed": self.seed})
 
 
 def cc_radii_many(robot, requests, scale: float | None = None, seed: int = 0, certify: bool = False,
@@ -225,7 +226,7 @@ def cc_radii_many(robot, requests, scale: float | None = None, seed: int = 0, ce
         which = min(list(radii) + ["singular"], key=lambda k: radii[k] if k != "singular" else sing)
         rmin = sing if which == "singular" else radii[which]
         res = CCRadii(S, G, R, tau, radii, sing, rmin, which, points[which], points,
-                      sum(c.failed for c in cd), shared)
+                      sum(c.failed for c in cd), shared, seed=seed)
         if certify:
             res = _with_certificate(res, robot, h, nearest_max_boxes)
         out.append(res)
