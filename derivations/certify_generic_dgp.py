@@ -62,7 +62,7 @@ from cdpr_algebra.homotopy.monodromy import MonodromyOptions, load_instance, mon
 from cdpr_algebra.homotopy.solve import solve_parameter_homotopy  # noqa: E402
 from cdpr_algebra.homotopy.tracker import TrackerOptions  # noqa: E402
 from cdpr_algebra.homotopy.trace_test import (TraceSliceSystem, TraceTestOptions,  # noqa: E402
-                                              complete_witnesses, compute_trace, distinct_points,
+                                              coinciding, complete_witnesses, compute_trace, distinct_points,
                                               verify_solution_completeness)
 
 FORMAT = "cdpr_algebra.dgp_generic_completeness"
@@ -115,34 +115,12 @@ def _move_stored(m, p_from, X, p_to, seed, runs=4):
             counts[path.status] = counts.get(path.status, 0) + 1
         ok = np.flatnonzero([path.status == "success" for path in tr.paths])
         E = np.array([tr.paths[i].endpoint for i in ok]).reshape(-1, fam.n)
-        jumped = _coinciding_members(fam, p_to, E)
+        jumped = coinciding(fam, p_to, E, polish_condition=None)  # mask of the points in groups of 2 or more
         counts["coinciding"] = int(jumped.sum())
         found, _ = distinct_points(fam, p_to, np.concatenate([found, E[~jumped]]))
         counts["union"] = int(len(found))
         runs_rec.append(counts)
     return found, runs_rec
-
-
-def _coinciding_members(fam, p, E):
-    """Mask of the rows of E that lie in a group of two or more coinciding points (the conditioning-aware test of
-    :func:`distinct_points`, after refining every point)."""
-    from cdpr_algebra.homotopy.endgame import refine
-    from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
-
-    mask = np.zeros(len(E), dtype=bool)
-    if len(E) < 2:
-        return mask
-    Er, _, _, cond, _ = refine(ParameterHomotopy(fam, p, p), E, 0.0)
-    cond = np.where(np.isfinite(cond), cond, 1e16)
-    tol = np.maximum(1e-8, 100 * 2.2e-16 * cond)
-    scale = 1 + np.max(np.abs(Er), axis=1)
-    for i in range(len(Er) - 1):
-        d = np.max(np.abs(Er[i + 1:] - Er[i]), axis=1) / np.maximum(scale[i + 1:], scale[i])
-        close = np.flatnonzero(d <= np.maximum(tol[i + 1:], tol[i])) + i + 1
-        if close.size:
-            mask[i] = True
-            mask[close] = True
-    return mask
 
 
 POSE = list(range(12))  # p, u, v, w: the tensions lam_i follow linearly from the pose (and have poles on the curve)
