@@ -96,18 +96,11 @@ def _check(rot, length, glob, part):
 
 def _block(assignments, indent):
     """Lines for [(target, expr)] with common subexpressions shared; targets are code strings, '+=' allowed."""
-    exprs = [e for _, e in assignments]
-    subs, reduced = sp.cse(exprs, symbols=sp.numbered_symbols("t"), order="none")
-    pad = " " * indent
-    lines = [f"{pad}{s} = {_pow_to_mul(v)}" for s, v in subs]
-    for (target, _), e in zip(assignments, reduced):
-        op = "+=" if target.endswith("+") else "="
-        lines.append(f"{pad}{target.rstrip('+').rstrip()} {op} {_pow_to_mul(e)}")
-    return lines
+    return _split_block(assignments, [], indent, [])
 
 
 def _split_block(main, extra, indent, extra_head):
-    """Lines for the assignments ``main`` and, under ``if with_ht:`` (after ``extra_head`` lines), ``extra``, with
+    """Lines for the assignments ``main`` and, under ``if with_ht:`` (after ``extra_head`` lines), ``extra`` (if any), with
     common subexpressions shared across both (one sympy.cse): temporaries that ``main`` needs come first, the others
     only inside the if-block."""
     exprs = [e for _, e in main] + [e for _, e in extra]
@@ -128,6 +121,8 @@ def _split_block(main, extra, indent, extra_head):
 
     lines = [f"{pad}{sym} = {_pow_to_mul(val)}" for sym, val in subs if sym in need]
     lines += [line(pad, t, e) for (t, _), e in zip(main, reduced[:len(main)])]
+    if not extra:
+        return lines
     lines += [f"{pad}if with_ht:"] + [pad2 + h for h in extra_head]
     lines += [f"{pad2}{sym} = {_pow_to_mul(val)}" for sym, val in subs if sym not in need]
     lines += [line(pad2, t, e) for (t, _), e in zip(extra, reduced[len(main):])]
@@ -145,18 +140,23 @@ def _nonzero(rows, variables):
     return out
 
 
+def _prologue(signature: str, doc: list[str]) -> list[str]:
+    """The start of a generated function: signature, docstring, the offsets of the parameter blocks, the pose
+    unknowns and the cable-free parameters read into locals."""
+    lines = ["", "", f"def {signature}:"] + doc
+    lines += ["    m = len(x) - 12", "    ia, ir, ib, ig, i_f = 0, 3 * m, 4 * m, 7 * m, 7 * m + 3", "    rf, rm = 6 + m, 9 + m"]
+    lines += [f"    {s} = x[{k}]" for k, s in enumerate(POSE)]
+    lines += [f"    {s} = p[ig + {k}]" for k, s in enumerate(GLOBAL_PARAMS[:3])]
+    lines += [f"    {s} = p[i_f + {k}]" for k, s in enumerate(GLOBAL_PARAMS[3:])]
+    return lines
+
+
 def generate() -> dict[str, str]:
     pose, lam, cpar, gpar, rot, length, glob, part = _template()
     d = {s: sp.Symbol("d" + str(s)) for s in cpar + gpar}
-    L = ["", "", "def taut_equations(x, p, dp, F, J, Ht, with_ht):",
-         '    """F and the nonzero pattern of J = dF/dx of the taut family at one point x (or at the columns of',
-         "    arrays), with ``with_ht`` also Ht = dF/dp . dp; J entries outside the pattern are left untouched.\"\"\"",
-         "    m = len(x) - 12",
-         "    ia, ir, ib, ig, i_f = 0, 3 * m, 4 * m, 7 * m, 7 * m + 3",
-         "    rf, rm = 6 + m, 9 + m"]
-    L += [f"    {s} = x[{k}]" for k, s in enumerate(POSE)]
-    L += [f"    {s} = p[ig + {k}]" for k, s in enumerate(GLOBAL_PARAMS[:3])]
-    L += [f"    {s} = p[i_f + {k}]" for k, s in enumerate(GLOBAL_PARAMS[3:])]
+    L = _prologue("taut_equations(x, p, dp, F, J, Ht, with_ht)", [
+        '    """F and the nonzero pattern of J = dF/dx of the taut family at one point x (or at the columns of',
+        "    arrays), with ``with_ht`` also Ht = dF/dp . dp; J entries outside the pattern are left untouched.\"\"\""])
     # rows 0-5 and the cable-free part of the statics rows
     jr = _nonzero(rot, pose)
     jg = _nonzero(glob, pose)
@@ -193,14 +193,8 @@ def generate() -> dict[str, str]:
     L += ["    if with_ht:"]
     L += [f"        Ht[{'rf' if k < 3 else 'rm'} + {k % 3}] = h{k}" for k in range(6)]
     # full parameter Jacobian
-    P = ["", "", "def taut_parameter_jacobian(x, p, JP):",
-         '    """The nonzero pattern of dF/dp of the taut family at x (entries outside it are left untouched)."""',
-         "    m = len(x) - 12",
-         "    ia, ir, ib, ig, i_f = 0, 3 * m, 4 * m, 7 * m, 7 * m + 3",
-         "    rf, rm = 6 + m, 9 + m"]
-    P += [f"    {s} = x[{k}]" for k, s in enumerate(POSE)]
-    P += [f"    {s} = p[ig + {k}]" for k, s in enumerate(GLOBAL_PARAMS[:3])]
-    P += [f"    {s} = p[i_f + {k}]" for k, s in enumerate(GLOBAL_PARAMS[3:])]
+    P = _prologue("taut_parameter_jacobian(x, p, JP)", [
+        '    """The nonzero pattern of dF/dp of the taut family at x (entries outside it are left untouched)."""'])
     gcol = ["ig + 0", "ig + 1", "ig + 2", "i_f + 0", "i_f + 1", "i_f + 2"]
     asg = [(f"JP[{'rf' if r < 3 else 'rm'} + {r % 3}, {gcol[c]}]", e) for (r, c), e in sorted(_nonzero(glob, gpar).items())]
     P += _block(asg, 4)
