@@ -39,7 +39,7 @@ import sympy as sp
 
 from .cubic_distances import MONOMIALS
 from cdpr_algebra.homotopy.many_targets import ManyTargetSolver
-from .radii import polynomials_batch, cc_radii_many
+from .radii import cc_radii_many, polynomials_batch, radii_by_number
 from .configurations import check_pose, configuration_tensions, parse_cables, valid_configurations
 from cdpr_algebra.model.errors import CdprInputError
 from cdpr_algebra.report.jsonable import jsonable
@@ -235,9 +235,7 @@ class PathRadii:
     where_by_name: dict = field(default=None, compare=False)  # the ``where`` of each cubic's minimum
 
     def radii_by_number(self) -> dict:
-        d = {str(c + 1): float(r) for c, r in self.radii.items()}
-        d["singular"] = float(self.singular)
-        return d
+        return radii_by_number(self.radii, self.singular)
 
     @property
     def status(self) -> str:

@@ -133,6 +133,14 @@ def _default_scale(robot) -> float:
     return robot.size / 10.0
 
 
+def radii_by_number(radii: dict, singular) -> dict:
+    """{"<cable number>": r, ..., "singular": r} from {0-based cable: r} and the distance to the singularity (the
+    JSON contract of radii at a pose and along a path)."""
+    d = {str(c + 1): float(r) for c, r in radii.items()}
+    d["singular"] = float(singular)
+    return d
+
+
 @dataclass(frozen=True)
 class CCRadii:
     """Radii of the first criterion for one 6-cable CC at one pose (cables 0-based; 1-based in ``to_dict``).
@@ -164,9 +172,7 @@ class CCRadii:
 
     def radii_by_number(self) -> dict:
         """{"<cable number>": r, ..., "singular": r} (the JSON contract)."""
-        d = {str(c + 1): float(r) for c, r in self.radii.items()}
-        d["singular"] = float(self.singular)
-        return d
+        return radii_by_number(self.radii, self.singular)
 
     @property
     def status(self) -> str:
