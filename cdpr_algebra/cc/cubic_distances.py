@@ -9,44 +9,38 @@ import time
 from dataclasses import dataclass
 import numpy as np
 
+from cdpr_algebra.generated.cubic_distance import MONOMIALS, ed_direction, ed_system, lagrange_system
 from cdpr_algebra.homotopy.many_targets import INFINITY_Y0, LABEL_SCALE, track_many
 
 
 
-# monomials y1^i y2^j y3^k of total degree <= 3 (the coefficient order of every cubic here)
-MONOMIALS = tuple((i, j, k) for i in range(4) for j in range(4) for k in range(4) if i + j + k <= 3)
-_EXPH = np.array([(3 - sum(m),) + m for m in MONOMIALS])  # homogeneous exponents (y0, y1, y2, y3), (20, 4)
 _NODES = np.cos(np.pi * (np.arange(4) + 0.5) / 4)  # Chebyshev nodes in [-1, 1]
 _VINV = np.linalg.inv(np.vander(_NODES, 4, increasing=True))
 _GRID = np.stack(np.meshgrid(_NODES, _NODES, _NODES, indexing="ij"), -1).reshape(-1, 3)
 
 
-def _tensor_map() -> np.ndarray:
-    """(64, 20) matrix taking cubic coefficients (MONOMIALS order) to the symmetric tensor T (4, 4, 4) with
-    P^h(Y) = sum T_ijk Y_i Y_j Y_k, Y = (y0, y1, y2, y3)."""
-    S = np.zeros((4, 4, 4, len(MONOMIALS)))
-    for m, e in enumerate(_EXPH):
-        idx = [v for v in range(4) for _ in range(e[v])]
-        perms = set(itertools.permutations(idx))
-        for p in perms:
-            S[p + (m,)] = 1.0 / len(perms)
-    return S.reshape(64, -1)
+def columns(values, n: int, dtype=complex) -> np.ndarray:
+    """(n, len(values)) array from the outputs of a generated function (arrays of n entries, or constants)."""
+    out = np.empty((n, len(values)), dtype=dtype)
+    for i, v in enumerate(values):
+        out[:, i] = v
+    return out
 
 
-_TMAP = _tensor_map()
-
-
-def cubic_tensors(C) -> np.ndarray:
-    """Symmetric tensors (..., 4, 4, 4) of cubics given by coefficients (..., 20)."""
-    C = np.asarray(C)
-    return (C @ _TMAP.T).reshape(C.shape[:-1] + (4, 4, 4))
-
-
-def _form_parts(T, Y):
-    """For tensors T (N, 4, 4, 4) and points Y (N, 4): P^h (N,), gradient (N, 4), Hessian (N, 4, 4)."""
-    V = np.einsum("nijk,nk->nij", T, Y)
-    g = np.einsum("nij,nj->ni", V, Y)
-    return np.einsum("ni,ni->n", g, Y), 3.0 * g, 6.0 * V
+def _ed_parts(Z, C, a, b, jac=True, dC=None):
+    """The generated projective ED system (:func:`cdpr_algebra.generated.cubic_distance.ed_system`) at the chart
+    points Z (N, 6) for the cubics C: (N, 20) rows, or one coefficient vector shared by all.  Returns [F (N, 6)],
+    plus J (N, 6, 6) with ``jac``, plus dF/dc . dC (N, 6) for a direction dC (N, 20)."""
+    N = len(Z)
+    z = np.asfortranarray(Z).T  # contiguous columns
+    c = np.asfortranarray(C).T if np.ndim(C) == 2 else C
+    vals = ed_system(*z, *c, *a, *b)
+    out = [columns(vals[:6], N)]
+    if jac:
+        out.append(columns(vals[6:], N).reshape(N, 6, 6))
+    if dC is not None:
+        out.append(columns(ed_direction(*z, *np.asfortranarray(dC).T), N))
+    return out
 
 
 def evaluate_cubic(coefficients, y) -> np.ndarray:
@@ -63,7 +57,8 @@ def evaluate_cubic(coefficients, y) -> np.ndarray:
 
 
 class _EDSystem:
-    """F(z; c), z = (y0, y1, y2, y3, mu, lam): mu y0 y_k - lam dP^h/dy_k, P^h, a.(y0..y3) - 1, b.(mu, lam) - 1."""
+    """The chart of the projective ED system: F(z; c), z = (y0, y1, y2, y3, mu, lam), with a.(y0..y3) = 1 and
+    b.(mu, lam) = 1 as its last two equations (random complex a, b)."""
 
     n = neq = 6
 
@@ -71,37 +66,9 @@ class _EDSystem:
         self.a = np.asarray(a, dtype=complex)
         self.b = np.asarray(b, dtype=complex)
 
-    def parts(self, Z, T, jac=True, dT=None):
-        """F (N, 6), J (N, 6, 6) and, for a tensor direction dT (N, 4, 4, 4), dF/dT . dT (N, 6)."""
-        Y, mu, lam = Z[:, :4], Z[:, 4], Z[:, 5]
-        P, G, H = _form_parts(T, Y)
-        N = len(Z)
-        F = np.empty((N, 6), dtype=complex)
-        y0 = Y[:, 0]
-        F[:, :3] = (mu * y0)[:, None] * Y[:, 1:] - lam[:, None] * G[:, 1:]
-        F[:, 3] = P
-        F[:, 4] = Y @ self.a - 1.0
-        F[:, 5] = mu * self.b[0] + lam * self.b[1] - 1.0
-        out = [F]
-        if jac:
-            J = np.zeros((N, 6, 6), dtype=complex)
-            J[:, :3, :4] = -lam[:, None, None] * H[:, 1:, :]
-            J[:, :3, 0] += mu[:, None] * Y[:, 1:]
-            for k in range(1, 4):
-                J[:, k - 1, k] += mu * y0
-            J[:, :3, 4] = y0[:, None] * Y[:, 1:]
-            J[:, :3, 5] = -G[:, 1:]
-            J[:, 3, :4] = G
-            J[:, 4, :4] = self.a
-            J[:, 5, 4:] = self.b
-            out.append(J)
-        if dT is not None:
-            dP, dG, _ = _form_parts(dT, Y)
-            D = np.zeros((N, 6), dtype=complex)
-            D[:, :3] = -lam[:, None] * dG[:, 1:]
-            D[:, 3] = dP
-            out.append(D)
-        return out
+    def parts(self, Z, C, jac=True, dC=None):
+        """F (N, 6), J (N, 6, 6) and, for a coefficient direction dC (N, 20), dF/dc . dC (N, 6)."""
+        return _ed_parts(Z, C, self.a, self.b, jac, dC)
 
 
 class _LinearProductStart:
@@ -151,12 +118,12 @@ class _StartHomotopy:
 
     def __init__(self, start: _LinearProductStart, system: _EDSystem, c1, gamma):
         self.start, self.sys, self.gamma = start, system, complex(gamma)
-        self.T1 = cubic_tensors(np.asarray(c1, dtype=complex))
+        self.c1 = np.asarray(c1, dtype=complex)
         self.n = self.neq = 6
 
     def evaluate_all(self, x, t):
         G, JG = self.start.parts(x)
-        F, JF = self.sys.parts(x, np.broadcast_to(self.T1, (len(x), 4, 4, 4)))
+        F, JF = self.sys.parts(x, self.c1)
         a = (self.gamma * np.asarray(t, dtype=complex))[:, None]
         b = (1 - np.asarray(t, dtype=complex))[:, None]
         return a * G + b * F, a[..., None] * JG + b[..., None] * JF, self.gamma * G - F
@@ -173,14 +140,13 @@ class _BatchParameterHomotopy:
 
     The path of instance k has the extra last coordinate k / LABEL_SCALE, kept constant by the equation
     z_6 - round(z_6 LABEL_SCALE) / LABEL_SCALE = 0 (its row of dH/dz is e_6 and its dH/dt is 0).  F is linear in
-    the cubic, so the forms of the shared generic cubic and of the gathered targets are evaluated separately."""
+    the cubic, so dH/dt = dF/dc . (c1 - C0[k])."""
 
     def __init__(self, system: _EDSystem, c1, C0):
         self.sys = system
-        # T0[k, j] = (T_k)_{:, :, j} flattened (16,): the targets' tensors sliced along the last index, real
-        self.T0 = np.ascontiguousarray(cubic_tensors(np.asarray(C0, dtype=float)).reshape(-1, 16, 4).transpose(0, 2, 1))
-        self.T1 = np.ascontiguousarray(cubic_tensors(np.asarray(c1, dtype=complex)).reshape(16, 4).T)  # (4, 16)
-        self.K = len(self.T0)
+        self.C0 = np.asarray(C0, dtype=float)
+        self.c1 = np.asarray(c1, dtype=complex)
+        self.K = len(self.C0)
         self.n = self.neq = 7
 
     def _index(self, x):
@@ -191,50 +157,21 @@ class _BatchParameterHomotopy:
         k = self._index(x)
         N = len(x)
         t = np.asarray(t, dtype=complex)[:, None]
-        Y = np.ascontiguousarray(x[:, :4])  # (a strided operand makes matmul ~100x slower)
-        mu, lam = x[:, 4], x[:, 5]
-        # V = T . Y (N, 16) for the generic cubic and the targets; g = V . Y; P = g . Y
-        # elementwise sums, not matmul: OpenBLAS threads spin on these tiny products
-        T1 = self.T1
-        V1 = T1[0] * Y[:, 0, None] + T1[1] * Y[:, 1, None] + T1[2] * Y[:, 2, None] + T1[3] * Y[:, 3, None]
-        Tk = self.T0[k]
-        V0 = Tk[:, 0] * Y[:, 0, None] + Tk[:, 1] * Y[:, 1, None] + Tk[:, 2] * Y[:, 2, None] + Tk[:, 3] * Y[:, 3, None]
-        V = t * V1 + (1 - t) * V0
-        V3 = V.reshape(N, 4, 4)
-        g = V3[:, :, 0] * Y[:, 0, None] + V3[:, :, 1] * Y[:, 1, None] + V3[:, :, 2] * Y[:, 2, None] \
-            + V3[:, :, 3] * Y[:, 3, None]
-        G = 3.0 * g
+        C0 = self.C0[k]
+        C = t * self.c1 + (1 - t) * C0
+        parts = self.sys.parts(x[:, :6], C, jac=jac, dC=(self.c1 - C0) if dt else None)
         H = np.empty((N, 7), dtype=complex)
-        y0 = Y[:, 0]
-        H[:, :3] = (mu * y0)[:, None] * Y[:, 1:] - lam[:, None] * G[:, 1:]
-        H[:, 3] = (g * Y).sum(axis=1)
-        a_ = self.sys.a
-        H[:, 4] = Y[:, 0] * a_[0] + Y[:, 1] * a_[1] + Y[:, 2] * a_[2] + Y[:, 3] * a_[3] - 1.0
-        H[:, 5] = mu * self.sys.b[0] + lam * self.sys.b[1] - 1.0
+        H[:, :6] = parts[0]
         H[:, 6] = x[:, 6] - k / LABEL_SCALE
         out = [H]
         if jac:
             Hx = np.zeros((N, 7, 7), dtype=complex)
-            Hx[:, :3, :4] = (-6.0 * lam)[:, None, None] * V3[:, 1:, :]
-            Hx[:, :3, 0] += mu[:, None] * Y[:, 1:]
-            muy0 = mu * y0
-            Hx[:, 0, 1] += muy0
-            Hx[:, 1, 2] += muy0
-            Hx[:, 2, 3] += muy0
-            Hx[:, :3, 4] = y0[:, None] * Y[:, 1:]
-            Hx[:, :3, 5] = -G[:, 1:]
-            Hx[:, 3, :4] = G
-            Hx[:, 4, :4] = self.sys.a
-            Hx[:, 5, 4:6] = self.sys.b
+            Hx[:, :6, :6] = parts[1]
             Hx[:, 6, 6] = 1.0
             out.append(Hx)
         if dt:
-            dV = (V1 - V0).reshape(N, 4, 4)
-            dg = dV[:, :, 0] * Y[:, 0, None] + dV[:, :, 1] * Y[:, 1, None] + dV[:, :, 2] * Y[:, 2, None] \
-                + dV[:, :, 3] * Y[:, 3, None]
             Ht = np.zeros((N, 7), dtype=complex)
-            Ht[:, :3] = (-3.0 * lam)[:, None] * dg[:, 1:]
-            Ht[:, 3] = (dg * Y).sum(axis=1)
+            Ht[:, :6] = parts[-1]
             out.append(Ht)
         return out
 
@@ -314,15 +251,12 @@ class CriticalDistances:
 
 
 def _newton_real(c, y, lam, iters=6):
-    """Real Newton on (y - lam grad P(y), P(y)) (affine, scaled coordinates)."""
-    T = cubic_tensors(np.asarray(c, dtype=float))[None]
+    """Real Newton on the generated affine Lagrange system (y - lam grad P(y), P(y)) (scaled coordinates)."""
+    c = [float(v) for v in c]
     for _ in range(iters):
-        P, G, H = _form_parts(T, np.concatenate([[1.0], y])[None])
-        F = np.concatenate([y - lam * G[0, 1:], P])
-        J = np.zeros((4, 4))
-        J[:3, :3] = np.eye(3) - lam * H[0, 1:, 1:]
-        J[:3, 3] = -G[0, 1:]
-        J[3, :3] = G[0, 1:]
+        vals = lagrange_system(*(float(v) for v in y), float(lam), *c)
+        F = np.array(vals[:4], dtype=float)
+        J = np.array(vals[4:], dtype=float).reshape(4, 4)
         try:
             d = np.linalg.solve(J, -F)
         except np.linalg.LinAlgError:

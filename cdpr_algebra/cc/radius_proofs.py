@@ -6,7 +6,9 @@ from __future__ import annotations
 
 import itertools
 import numpy as np
-from .cubic_distances import MONOMIALS, _NODES
+
+from cdpr_algebra.generated.cubic_distance import CRITICAL_SET_ROWS, MONOMIALS, lagrange_system
+from .cubic_distances import _NODES
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -53,40 +55,18 @@ def arb_cubic(robot, position, rotation, cables, column, scale) -> list:
 
 
 def _lagrange_evaluators(c):
-    """F(y, lam) = (y - lam grad P(y), P(y)) and its Jacobian for P = sum c_m y^m; plain arithmetic (floats or
-    arb balls, coefficients ``c`` floats or balls)."""
-    E = MONOMIALS
-
-    def parts(Y):
-        pw = [[1, Y[v], Y[v] * Y[v], Y[v] * Y[v] * Y[v]] for v in range(3)]
-        P = 0
-        G = [0, 0, 0]
-        H = [[0, 0, 0] for _ in range(3)]
-        for cm, e in zip(c, E):
-            P = P + cm * pw[0][e[0]] * pw[1][e[1]] * pw[2][e[2]]
-            for v in range(3):
-                if e[v]:
-                    f = list(e)
-                    f[v] -= 1
-                    G[v] = G[v] + cm * e[v] * pw[0][f[0]] * pw[1][f[1]] * pw[2][f[2]]
-                    for w in range(3):
-                        if f[w]:
-                            g = list(f)
-                            g[w] -= 1
-                            H[v][w] = H[v][w] + cm * e[v] * f[w] * pw[0][g[0]] * pw[1][g[1]] * pw[2][g[2]]
-        return P, G, H
+    """F(y, lam) = (y - lam grad P(y), P(y)) and its Jacobian (4 rows) for P = sum c_m y^m, from the generated
+    :func:`cdpr_algebra.generated.cubic_distance.lagrange_system` (plain arithmetic: floats or arb balls)."""
+    c = list(c)
 
     def F(x):
-        P, G, _ = parts(x[:3])
-        return [x[v] - x[3] * G[v] for v in range(3)] + [P]
+        return list(lagrange_system(x[0], x[1], x[2], x[3], *c)[:4])
 
     def J(x):
-        _, G, H = parts(x[:3])
-        rows = [[(1 if v == w else 0) - x[3] * H[v][w] for w in range(3)] + [-G[v]] for v in range(3)]
-        rows.append([G[0], G[1], G[2], 0])
-        return rows
+        v = lagrange_system(x[0], x[1], x[2], x[3], *c)[4:]
+        return [list(v[4 * r:4 * r + 4]) for r in range(4)]
 
-    return F, J, parts
+    return F, J
 
 
 def certify_radius(robot, position, rotation, cables, column, scale, point) -> dict:
@@ -103,12 +83,11 @@ def certify_radius(robot, position, rotation, cables, column, scale, point) -> d
     cb = arb_cubic(robot, position, rotation, cables, column, scale)
     y = (np.asarray(point, dtype=float) - np.asarray(position, dtype=float)) / scale
     cf = np.array([float(v) for v in cb])
-    Ff, Jf, parts = _lagrange_evaluators(cf)
-    _, G, _ = parts(list(y))
-    G = np.array(G, dtype=float)
+    Ff, Jf = _lagrange_evaluators(cf)
+    G = -np.array(Jf(list(y) + [0.0]), dtype=float)[:3, 3]  # the last column of J is -grad P
     lam = float(y @ G / (G @ G))
     x0 = np.concatenate([y, [lam]])
-    F, J, _ = _lagrange_evaluators(cb)
+    F, J = _lagrange_evaluators(cb)
     res = krawczyk_certify(F, J, x0, np.array([1.0, 1.0, 1.0, max(abs(lam), 1e-300)]) * 1.0,
                            max_rel_width=1e-8, F_float=lambda x: np.array(Ff(list(x)), dtype=float),
                            J_float=lambda x: np.array(Jf(list(x)), dtype=float))
@@ -126,55 +105,17 @@ NEAREST_REL_GAP = 1e-9  # the proven lower bound is (1 - this) times the lower e
 NEAREST_MAX_BOXES = 200_000  # boxes per cubic before giving up (then nearest-ness stays a float search)
 
 
-class _Poly:
-    """A real polynomial in y1, y2, y3 with interval coefficients: exponent tuples -> (lo, hi), outward rounded."""
+def critical_set_coefficients(coef_lo, coef_hi):
+    """Rigorous (mid, rad) coefficient rows (16, 20) over MONOMIALS of the polynomials of the critical set
+    C = {P = 0, y x grad P = 0} and their derivatives (:data:`cdpr_algebra.generated.cubic_distance.CRITICAL_SET_ROWS`,
+    integer maps of the cubic's coefficients), for every cubic with coefficients in [coef_lo, coef_hi]."""
+    from cdpr_algebra.intervals.arithmetic import Interval
+    from cdpr_algebra.intervals.operators import midrad, mr_matmul
 
-    def __init__(self, terms: dict):
-        self.terms = {e: c for e, c in terms.items() if not (c[0] == 0.0 and c[1] == 0.0)}
-
-    @staticmethod
-    def _add(a, b):
-        from cdpr_algebra.intervals.arithmetic import down, up
-
-        return (float(down(a[0] + b[0])), float(up(a[1] + b[1])))
-
-    @classmethod
-    def from_bounds(cls, lo, hi):
-        return cls({e: (float(l), float(h)) for e, l, h in zip(MONOMIALS, lo, hi)})
-
-    def deriv(self, v: int) -> "_Poly":
-        from cdpr_algebra.intervals.arithmetic import down, up
-
-        out = {}
-        for e, (lo, hi) in self.terms.items():
-            if e[v]:
-                f = list(e)
-                f[v] -= 1
-                k = float(e[v])
-                out[tuple(f)] = (float(down(lo * k)), float(up(hi * k)))
-        return _Poly(out)
-
-    def times_var(self, v: int) -> "_Poly":
-        out = {}
-        for e, c in self.terms.items():
-            f = list(e)
-            f[v] += 1
-            out[tuple(f)] = c
-        return _Poly(out)
-
-    def __sub__(self, o: "_Poly") -> "_Poly":
-        out = dict(self.terms)
-        for e, (lo, hi) in o.terms.items():
-            out[e] = self._add(out[e], (-hi, -lo)) if e in out else (-hi, -lo)
-        return _Poly(out)
-
-    def matrix_row(self):
-        """(lo, hi) coefficient rows over MONOMIALS (every polynomial here has degree <= 3)."""
-        lo, hi = np.zeros(len(MONOMIALS)), np.zeros(len(MONOMIALS))
-        for e, (l, h) in self.terms.items():
-            k = _MONO_INDEX[e]
-            lo[k], hi[k] = l, h
-        return lo, hi
+    L = np.array(CRITICAL_SET_ROWS, dtype=float)  # (16, 20, 20), small integers: exact
+    cm, cr = midrad(Interval(np.asarray(coef_lo, dtype=float), np.asarray(coef_hi, dtype=float)))
+    rows = mr_matmul(L.reshape(-1, L.shape[-1]), None, cm[:, None], cr[:, None])
+    return midrad(Interval(rows.lo.reshape(L.shape[:2]), rows.hi.reshape(L.shape[:2])))
 
 
 _MONO_INDEX = {e: k for k, e in enumerate(MONOMIALS)}
@@ -217,14 +158,11 @@ def exclude_critical_points(coef_lo, coef_hi, radius: float, max_boxes: int | No
     from cdpr_algebra.intervals.operators import midrad, mr_matmul
 
     max_boxes = NEAREST_MAX_BOXES if max_boxes is None else max_boxes
-    P = _Poly.from_bounds(coef_lo, coef_hi)
-    grad = [P.deriv(v) for v in range(3)]
-    funcs = [P] + [grad[b].times_var(a) - grad[a].times_var(b) for a, b in ((0, 1), (0, 2), (1, 2))]
-    polys = funcs + [f.deriv(v) for v in range(3) for f in funcs]  # 4 functions, then d/dy_v of each
-    rows = [f.matrix_row() for f in polys]
-    Cm, Cr = midrad(Interval(np.array([r[0] for r in rows]), np.array([r[1] for r in rows])))
+    if not np.isfinite(radius):  # no finite radius to prove (e.g. the float search failed): nothing proven
+        return False, 0
+    Cm, Cr = critical_set_coefficients(coef_lo, coef_hi)  # 4 functions, then d/dy_v of each
     CmT, CrT = np.ascontiguousarray(Cm.T), np.ascontiguousarray(Cr.T)
-    nf = len(funcs)
+    nf = 4
     r2 = float(up(radius * radius))
     lo = np.full((1, 3), -float(radius))
     hi = np.full((1, 3), float(radius))
