@@ -98,10 +98,13 @@ def test_unparsable_trajectory_subprocess():
 def test_failed_paths_give_exit_3_and_name_the_configuration(capsys, monkeypatch):
     """Paths forced to fail (a budget of 3 steps per path in the radii's batched homotopy): the JSON counts them per
     configuration, stderr names the configuration, and the exit status is 3 (incomplete)."""
+    from dataclasses import replace
+
     from cdpr_algebra.cc import cubic_distances
     from cdpr_algebra.homotopy.tracker import TrackerOptions
 
-    monkeypatch.setattr(cubic_distances, "_batch_tracker", lambda: TrackerOptions(predictor_tol=1e-4, max_steps=3))
+    options = replace(cubic_distances.batch_options(), tracker=TrackerOptions(predictor_tol=1e-4, max_steps=3))
+    monkeypatch.setattr(cubic_distances, "batch_options", lambda: options)
     code = main(["cc", ROBOT, "--position", "1", "0", "2", "--configuration", "3", "4", "5", "6", "7", "8", "--json"])
     out, err = capsys.readouterr()
     entry = json.loads(out)["configurations"][0]

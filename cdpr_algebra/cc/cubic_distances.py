@@ -10,7 +10,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from cdpr_algebra.generated.cubic_distance import MONOMIALS, ed_direction, ed_system, lagrange_system
-from cdpr_algebra.homotopy.many_targets import INFINITY_Y0, LABEL_SCALE, track_many
+from cdpr_algebra.homotopy.endgame import track_paths
+from cdpr_algebra.homotopy.many_targets import chart_options, solve_targets
+from cdpr_algebra.homotopy.results import FAILURES, SINGULAR, SUCCESS
 
 
 
@@ -58,7 +60,8 @@ def evaluate_cubic(coefficients, y) -> np.ndarray:
 
 class _EDSystem:
     """The chart of the projective ED system: F(z; c), z = (y0, y1, y2, y3, mu, lam), with a.(y0..y3) = 1 and
-    b.(mu, lam) = 1 as its last two equations (random complex a, b)."""
+    b.(mu, lam) = 1 as its last two equations (random complex a, b); batched over points with one cubic per
+    point, as :func:`cdpr_algebra.homotopy.many_targets.solve_targets` wants its systems."""
 
     n = neq = 6
 
@@ -69,6 +72,16 @@ class _EDSystem:
     def parts(self, Z, C, jac=True, dC=None):
         """F (N, 6), J (N, 6, 6) and, for a coefficient direction dC (N, 20), dF/dc . dC (N, 6)."""
         return _ed_parts(Z, C, self.a, self.b, jac, dC)
+
+    def evaluate(self, Z, C):
+        return self.parts(Z, C, jac=False)[0]
+
+    def evaluate_and_jacobian(self, Z, C):
+        return tuple(self.parts(Z, C))
+
+    def parameter_direction(self, Z, dC):
+        """dF/dc . dC (F is linear in c)."""
+        return columns(ed_direction(*np.asfortranarray(Z).T, *np.asfortranarray(dC).T), len(Z))
 
 
 class _LinearProductStart:
@@ -116,6 +129,8 @@ class _LinearProductStart:
 class _StartHomotopy:
     """H = gamma t G(z) + (1 - t) F(z; c1) (the gamma trick), for the one-time generic solve."""
 
+    chart = True  # chart coordinates (y0 first): the endgame decides finite / at infinity there
+
     def __init__(self, start: _LinearProductStart, system: _EDSystem, c1, gamma):
         self.start, self.sys, self.gamma = start, system, complex(gamma)
         self.c1 = np.asarray(c1, dtype=complex)
@@ -133,53 +148,6 @@ class _StartHomotopy:
 
     def evaluate(self, x, t):
         return self.evaluate_all(x, t)[0]
-
-
-class _BatchParameterHomotopy:
-    """H(z, t) = F(z; t c1 + (1 - t) C0[k]) for many real target cubics C0 (K, 20) at once.
-
-    The path of instance k has the extra last coordinate k / LABEL_SCALE, kept constant by the equation
-    z_6 - round(z_6 LABEL_SCALE) / LABEL_SCALE = 0 (its row of dH/dz is e_6 and its dH/dt is 0).  F is linear in
-    the cubic, so dH/dt = dF/dc . (c1 - C0[k])."""
-
-    def __init__(self, system: _EDSystem, c1, C0):
-        self.sys = system
-        self.C0 = np.asarray(C0, dtype=float)
-        self.c1 = np.asarray(c1, dtype=complex)
-        self.K = len(self.C0)
-        self.n = self.neq = 7
-
-    def _index(self, x):
-        k = np.nan_to_num(x[:, 6].real * LABEL_SCALE, nan=0.0, posinf=0.0, neginf=0.0)
-        return np.clip(np.rint(k), 0, self.K - 1).astype(int)
-
-    def evaluate_all(self, x, t, jac=True, dt=True):
-        k = self._index(x)
-        N = len(x)
-        t = np.asarray(t, dtype=complex)[:, None]
-        C0 = self.C0[k]
-        C = t * self.c1 + (1 - t) * C0
-        parts = self.sys.parts(x[:, :6], C, jac=jac, dC=(self.c1 - C0) if dt else None)
-        H = np.empty((N, 7), dtype=complex)
-        H[:, :6] = parts[0]
-        H[:, 6] = x[:, 6] - k / LABEL_SCALE
-        out = [H]
-        if jac:
-            Hx = np.zeros((N, 7, 7), dtype=complex)
-            Hx[:, :6, :6] = parts[1]
-            Hx[:, 6, 6] = 1.0
-            out.append(Hx)
-        if dt:
-            Ht = np.zeros((N, 7), dtype=complex)
-            Ht[:, :6] = parts[-1]
-            out.append(Ht)
-        return out
-
-    def evaluate_and_jacobian(self, x, t):
-        return self.evaluate_all(x, t, dt=False)
-
-    def evaluate(self, x, t):
-        return self.evaluate_all(x, t, jac=False, dt=False)[0]
 
 
 @dataclass
@@ -211,11 +179,10 @@ def _generic(seed: int = 0) -> _Generic:
         c1 = rng.normal(size=20) + 1j * rng.normal(size=20)
         start = _LinearProductStart(system, rng)
         gamma = np.exp(2j * np.pi * rng.random())
-        xend, status = track_many(_StartHomotopy(start, system, c1, gamma), start.solutions, seed,
-                                  at_infinity=_chart_at_infinity)
-        X = xend[status == "success"]
+        tr = track_paths(_StartHomotopy(start, system, c1, gamma), start.solutions, chart_options(), seed=seed)
+        X = np.array([p.endpoint for p in tr.paths if p.status == SUCCESS]).reshape(-1, 6)
         if len(X):
-            X = X[(np.abs(X[:, 0]) > 1e-6) & (np.abs(X[:, 4]) > 1e-6)]
+            X = X[np.abs(X[:, 4]) > 1e-6]  # mu = 0: a singular point of the cubic, not a critical point
         # distinct, nonsingular, finite: must be the Euclidean distance degree of a cubic
         if len(X) == ED_DEGREE and len({tuple(np.round(x, 6)) for x in X}) == ED_DEGREE:
             g = _Generic(system, c1, X, time.perf_counter() - t0, seed)
@@ -291,20 +258,14 @@ def balance(c) -> tuple[np.ndarray, float]:
 
 
 # Step control of the batched parameter homotopies: predictor tolerance 1e-4 (engine default 1e-5) halves the
-# steps; measured on the 48 cubics of seed 002 Sec. IV-B.1 it gives the same critical points (to 2e-12) and the
-# duplicate check of track_many re-tracks any path that jumps onto another one.
+# steps; measured on the 48 cubics of seed 002 Sec. IV-B.1 it gives the same critical points (to 2e-12), and the
+# engine re-tracks any path that ends on the same point as another one.
+PREDICTOR_TOL = 1e-4
 
 
-def _batch_tracker():
-    from cdpr_algebra.homotopy.tracker import TrackerOptions
-
-    return TrackerOptions(predictor_tol=1e-4)
-
-
-
-def _chart_at_infinity(z):
-    """The ED system's chart points with y0 ~ 0 (coordinates 0..3 are (y0 : y))."""
-    return np.abs(z[:, 0]) <= INFINITY_Y0 * np.abs(z[:, :4]).max(axis=1)
+def batch_options():
+    """The engine options of the batched distance homotopies (:func:`cdpr_algebra.homotopy.many_targets.chart_options`)."""
+    return chart_options(PREDICTOR_TOL)
 
 
 def distance_to_cubics(C, seed: int = 0, real_tol: float = 1e-7) -> list[CriticalDistances]:
@@ -329,31 +290,25 @@ def distance_to_cubics(C, seed: int = 0, real_tol: float = 1e-7) -> list[Critica
     gen = _generic(seed)
     solved: list = [None] * len(uniq)
     U = canon[uniq]
-    for lo in range(0, len(uniq), LABEL_SCALE):
-        idx = np.arange(lo, min(len(uniq), lo + LABEL_SCALE))
-        X0 = np.concatenate([np.tile(gen.solutions, (len(idx), 1)),
-                             np.repeat((idx - lo) / LABEL_SCALE, ED_DEGREE)[:, None]], axis=1)
-        hom = _BatchParameterHomotopy(gen.system, gen.c1, U[idx])
-        xend, status = track_many(hom, X0, seed, at_infinity=_chart_at_infinity, tracker=_batch_tracker())
-        for j, u in enumerate(idx):
-            sl = slice(j * ED_DEGREE, (j + 1) * ED_DEGREE)
-            solved[u] = _classify(U[u], scales[uniq[u]], xend[sl], status[sl], real_tol)
+    results = solve_targets(gen.system, gen.c1, gen.solutions, U, seed=seed, options=batch_options(), chart=True)
+    for u, res in enumerate(results):
+        solved[u] = _classify(U[u], scales[uniq[u]], res.track.paths, real_tol)
     return [solved[which[k]] for k in range(K)]
 
 
-def _classify(c, s, xend, status, real_tol):
+def _classify(c, s, paths, real_tol):
+    """Real critical points and singular points of one cubic from its paths (chart points; the endgame decided
+    finite or at infinity)."""
     pts, kinds, lams = [], [], []
-    failed = int(np.sum(status == "failed"))
+    failed = sum(1 for p in paths if p.status in FAILURES)
     finite = 0
-    for z, st in zip(xend, status):
-        if st not in ("success", "singular"):
+    for p in paths:
+        st, z = p.status, p.endpoint
+        if st not in (SUCCESS, SINGULAR):
             continue
-        scale = np.abs(z[:4]).max()
-        if abs(z[0]) <= INFINITY_Y0 * scale:
-            continue  # at infinity
         finite += 1
         y = z[1:4] / z[0]
-        tol = real_tol if st == "success" else max(real_tol, 1e-5)
+        tol = real_tol if st == SUCCESS else max(real_tol, 1e-5)
         if np.abs(y.imag).max() > tol * (1 + np.abs(y).max()):
             continue
         singular_point = abs(z[4]) <= 1e-8 * np.abs(z[4:6]).max()
@@ -378,4 +333,4 @@ def _classify(c, s, xend, status, real_tol):
         if all(np.abs(pts[i] - pts[j]).max() > 1e-9 * (1 + np.abs(pts[i]).max()) for j in keep):
             keep.append(i)
     return CriticalDistances(s * pts[keep], s * d[keep], tuple(kinds[i] for i in keep), np.array(lams)[keep],
-                             failed, len(status), finite, c, s)
+                             failed, len(paths), finite, c, s)

@@ -5,8 +5,9 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
 
 * **m = 1**: analytic (:mod:`cdpr_algebra.dgp.one_cable`, seed 000 Sec. 3.2); the platform may still turn about the
   cable, the reported pose is the middle of the widest feasible arc.
-* **m = 2 .. 6**: parameter homotopy (:func:`.homotopy.solve.solve_parameter_homotopy`, which re-tracks
-  failed or coinciding paths itself) from the stored generic solution set of :func:`cdpr_algebra.model.taut_equations.taut_family`
+* **m = 2 .. 6**: the engine's parameter homotopy (:func:`cdpr_algebra.homotopy.many_targets.solve_targets`
+  with one target: :func:`cdpr_algebra.homotopy.solve.solve_parameter_homotopy`, which re-tracks failed or
+  coinciding paths itself) from the stored generic solution set of :func:`cdpr_algebra.model.taut_equations.taut_family`
   (``cdpr_algebra/data/dgp_generic_m{m}.json``, made by ``derivations/solve_generic_dgp.py``) to the robot's
   parameters.  Subproblems whose m has no stored set are reported as skipped.  The robot is first normalized
   to the scale of the stored sets: base centred at the centroid c of the exit points, world frame turned by
@@ -419,7 +420,7 @@ def default_options():
 
 def _track(m, target, seed, gamma, options=None):
     """Parameter homotopy from the stored generic set (see the module doc).  Returns (result, failed paths)."""
-    from cdpr_algebra.homotopy.solve import solve_parameter_homotopy
+    from cdpr_algebra.homotopy.many_targets import solve_targets
 
     p_gen, X_gen = _generic(m)
     # no in-place double retries: suspect paths are re-tracked in projective coordinates; in the re-run with a
@@ -429,8 +430,8 @@ def _track(m, target, seed, gamma, options=None):
     # paths ending on one point are re-tracked with tightened steps (path jumping cannot go unnoticed).
     # The endgame decides finite / at infinity in a projective chart (no norm threshold).
     options = default_options() if options is None else options
-    res = solve_parameter_homotopy(fast_family(m), p_gen, X_gen, target, seed=seed, gamma=gamma, options=options,
-                                   retries=PROJECTIVE_RETRIES)
+    (res,) = solve_targets(fast_family(m), p_gen, X_gen, [target], seed=seed, options=options, gamma=gamma,
+                           retries=PROJECTIVE_RETRIES)
     return res, sum(1 for p in res.track.paths if p.status in FAILURES)
 
 

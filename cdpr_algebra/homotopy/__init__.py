@@ -8,7 +8,8 @@ Flat topic modules, after HomotopyContinuation.jl:
 * :mod:`.endgame` -- Cauchy endgame, at-infinity test, Newton refinement, retries (double, mpmath);
 * :mod:`.start_systems` -- total degree, multi-homogeneous (linear product), parameter homotopy;
 * :mod:`.monodromy` -- generic solution sets from one seed point, saved/loaded instances;
-* :mod:`.many_targets` -- one system solved for many parameter vectors in one batched run (labelled paths);
+* :mod:`.many_targets` -- :func:`solve_targets`, the one many-target parameter homotopy (the DGP per taut set, the
+  robustness radii; chart systems batched as labelled paths);
 * :mod:`.trace_test` -- the trace test that certifies a monodromy solution set complete;
 * :mod:`.results` -- immutable per-path and summary records;
 * :mod:`.solve` -- :func:`solve`, :func:`solve_parameter_homotopy`.
@@ -22,10 +23,11 @@ from .start_systems import (multi_homogeneous, multi_homogeneous_bezout_number, 
                             total_degree)
 from .results import PathResult, Solution, SolveResult, Summary, TrackResult
 from .solve import group_solutions, solve, solve_parameter_homotopy
+from .many_targets import solve_targets
 
 __all__ = [
     "PolynomialSystem", "ParameterHomotopy", "StraightLineHomotopy", "TrackerOptions", "track_paths", "track_segment",
     "EndgameOptions", "SolveOptions", "multi_homogeneous", "multi_homogeneous_bezout_number", "bezout_number",
     "parameter_homotopy", "total_degree", "PathResult", "Solution", "SolveResult", "Summary", "TrackResult",
-    "group_solutions", "solve", "solve_parameter_homotopy",
+    "group_solutions", "solve", "solve_parameter_homotopy", "solve_targets",
 ]

@@ -59,8 +59,13 @@ class EndgameOptions:
     * ``min_valuation`` [-0.02]: a stable valuation estimate below this is at infinity;
     * ``singular_condition`` [1e10]: cond(dF/dx) beyond this is singular;
     * ``refine_tol`` [1e-13]: last Newton update accepted as full double precision;
+    * ``settled_update`` [0, off]: a last Newton update (relative) at or below this also ends a path regular at
+      the fast finish when the condition number is below ``singular_condition`` (for chart points with large
+      coordinates, whose updates stall above ``refine_tol`` although Newton has converged);
     * ``finite_residual`` [1e-6]: a Cauchy estimate with a larger relative residual is not a finite
-      endpoint (the loop mean of a diverging Puiseux series is finite): the path is at infinity;
+      endpoint (the loop mean of a diverging Puiseux series is finite): the path is at infinity; in a projective
+      chart, where nothing diverges, such a mean means the loops enclosed branch points other than t = 0 (a cluster
+      near it, on near-degenerate targets), and sampling goes on at smaller radii;
     * ``cluster_tol`` [1e-6]: finite endpoints of several paths closer than this (relative) are one
       singular solution whose multiplicity is the number of those paths;
     * ``projective`` [False]: decide finite / at infinity in a random projective chart (module doc, step 3);
@@ -88,6 +93,7 @@ class EndgameOptions:
     min_valuation: float = -0.02
     singular_condition: float = 1e10
     refine_tol: float = 1e-13
+    settled_update: float = 0.0
     finite_residual: float = 1e-6
     cluster_tol: float = 1e-6
     projective: bool = False
@@ -294,11 +300,16 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
             ci = np.flatnonzero(conv)
             diverging = ci[~(resid <= o.finite_residual)]
             conv[diverging] = False
-            status[a[diverging]] = ENDGAME_FAILED if chart else AT_INFINITY
-            xend[a[diverging]] = x[a[diverging]]
-            acc[a[diverging]] = np.nan
-            wind[a[diverging]] = c[diverging]
             ok[diverging] = False
+            if chart:
+                # a chart point does not diverge: the loops enclosed branch points other than t = 0 (a cluster
+                # near it), so the mean is not the limit yet; go on at smaller radii (failed if samples run out)
+                prev_est[a[diverging]] = np.nan
+            else:
+                status[a[diverging]] = AT_INFINITY
+                xend[a[diverging]] = x[a[diverging]]
+                acc[a[diverging]] = np.nan
+                wind[a[diverging]] = c[diverging]
         xend[a[conv]] = est[conv]
         wind[a[conv]] = c[conv]
         acc[a[conv]] = diff[conv]
@@ -466,7 +477,7 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
     steps = seg.steps.copy()
     reached = seg.status == SUCCESS
     xr, upd, res, cond, quad = refine(homotopy, seg.x[reached], 0.0, tol=eo.refine_tol)
-    good = quad & (cond <= eo.singular_condition)
+    good = (quad | (upd <= eo.settled_update)) & (cond <= eo.singular_condition)
     gi = np.flatnonzero(reached)[good]
     out_x[gi] = xr[good]
     status[gi] = SUCCESS
