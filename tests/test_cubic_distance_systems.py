@@ -90,3 +90,37 @@ def test_distance_to_a_sphere_written_as_a_cubic():
     assert res.failed == 0
     assert abs(res.minimum - (np.linalg.norm(q) - r)) < 1e-10
     assert np.allclose(res.points[0], q * (1 - r / np.linalg.norm(q)), atol=1e-10)
+
+
+def _nodal_cubic():
+    # (y1-1)^2 (y3+1) + (y2-1/2)^2 - (y1-1)^3 - (y3-3/10)^2 (y2-1/2): one singular point, (1, 1/2, 3/10)
+    import sympy as sp
+
+    y1, y2, y3 = sp.symbols("y1 y2 y3")
+    P = (y1 - 1) ** 2 * (y3 + 1) + (y2 - sp.Rational(1, 2)) ** 2 - (y1 - 1) ** 3 \
+        - (y3 - sp.Rational(3, 10)) ** 2 * (y2 - sp.Rational(1, 2))
+    poly = sp.Poly(sp.expand(P), y1, y2, y3)
+    d = dict(zip(poly.monoms(), poly.coeffs()))
+    return np.array([float(d.get(m, 0)) for m in MONOMIALS])
+
+
+def test_a_path_heading_for_a_node_is_accounted_for_by_the_node():
+    from cdpr_algebra.cc.cubic_distances import _singular_point_near
+
+    c = _nodal_cubic()
+    node = np.array([1.0, 0.5, 0.3])
+    near = node + 1e-4 * np.array([1.0, -2.0, 0.5])
+    z = np.concatenate([[0.5], 0.5 * near, [1e-4, 1.0]]).astype(complex)  # chart point, mu small
+    y = _singular_point_near(c, z)
+    assert y is not None and np.allclose(y, node, atol=1e-4)  # a degenerate node: Newton converges linearly
+    # a node of the true surface is a near-node of a cubic with rounded coefficients: still accepted
+    rng = np.random.default_rng(2)
+    assert _singular_point_near(c * (1 + 1e-12 * rng.normal(size=20)), z) is not None
+    # no singular point there once the cubic is perturbed beyond rounding, or when mu is not small
+    assert _singular_point_near(c * (1 + 1e-5 * rng.normal(size=20)), z) is None
+    assert _singular_point_near(c, np.concatenate([[0.5], 0.5 * near, [0.5, 1.0]]).astype(complex)) is None
+    # the distance search lists the node itself
+    (res,) = distance_to_cubics(c[None])
+    assert res.failed == 0
+    k = [i for i, kind in enumerate(res.kinds) if kind == "singular point"]
+    assert len(k) == 1 and np.allclose(res.points[k[0]], node, atol=1e-8)

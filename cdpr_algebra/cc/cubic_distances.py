@@ -296,14 +296,63 @@ def distance_to_cubics(C, seed: int = 0, real_tol: float = 1e-7) -> list[Critica
     return [solved[which[k]] for k in range(K)]
 
 
+SINGULAR_POINT_MU = 0.05  # |mu| / |(mu, lam)| below this: the path may be heading for a singular point
+# Newton's residual on (P, grad P), relative to the size of the terms: the cubics are interpolated from determinants,
+# so a node of the true surface is a near-node of the cubic (measured: 1e-11 on CC [3..8] at (1, 0, 2), whose paths
+# into that node do not converge in double precision); its point is on the surface to that accuracy, a candidate
+SINGULAR_POINT_RESIDUAL = 1e-9
+
+
+def _singular_point_near(c, z):
+    """The singular point y (P(y) = 0 and grad P(y) = 0, complex) that Gauss-Newton on those four equations reaches
+    from the chart point z, or None: z must be finite with |mu| small (the ED system's singular-point solutions
+    have mu = 0) and Gauss-Newton must settle there with a residual below SINGULAR_POINT_RESIDUAL."""
+    if not np.all(np.isfinite(z)) or abs(z[0]) <= 1e-8 * np.abs(z[:4]).max():
+        return None
+    if abs(z[4]) > SINGULAR_POINT_MU * np.abs(z[4:6]).max():
+        return None
+    y = z[1:4] / z[0]
+    cc = [complex(v) for v in c]
+    mag = np.abs(np.asarray(c, dtype=float)).sum()
+    for _ in range(30):
+        v = lagrange_system(*y, 1.0, *cc)  # with lam = 1: F[3] = P, J[3, :3] = grad P, J[:3, :3] = I - Hessian
+        J = np.array(v[4:], dtype=complex).reshape(4, 4)
+        grad, hess = J[3, :3], np.eye(3) - J[:3, :3]
+        f = np.concatenate([[v[3]], grad])
+        A = np.vstack([grad[None, :], hess])
+        d = np.linalg.lstsq(A, -f, rcond=None)[0]
+        y = y + d
+        if np.abs(d).max() <= 1e-14 * (1 + np.abs(y).max()):
+            break
+    v = lagrange_system(*y, 1.0, *cc)
+    J = np.array(v[4:], dtype=complex).reshape(4, 4)
+    res = max(abs(v[3]), np.abs(J[3, :3]).max())
+    scale = mag * (1 + np.abs(y).max()) ** 3
+    return y if res <= SINGULAR_POINT_RESIDUAL * scale else None
+
+
 def _classify(c, s, paths, real_tol):
     """Real critical points and singular points of one cubic from its paths (chart points; the endgame decided
     finite or at infinity)."""
     pts, kinds, lams = [], [], []
-    failed = sum(1 for p in paths if p.status in FAILURES)
+    failed = 0
     finite = 0
     for p in paths:
         st, z = p.status, p.endpoint
+        if st in FAILURES:
+            # a path whose endgame did not converge, heading for mu = 0: if its last point leads Newton to a
+            # singular point of the surface (P = 0, grad P = 0: a node), the path is accounted for by that point,
+            # a candidate of its own (and covered by the interval exclusion, which includes singular points)
+            node = _singular_point_near(c, z)
+            if node is None:
+                failed += 1
+                continue
+            finite += 1
+            if np.abs(node.imag).max() <= max(real_tol, 1e-5) * (1 + np.abs(node).max()):
+                pts.append(node.real)
+                kinds.append("singular point")
+                lams.append(np.nan)
+            continue
         if st not in (SUCCESS, SINGULAR):
             continue
         finite += 1

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .configurations import check_pose, configuration_tensions
+from cdpr_algebra.generated.rodrigues_equilibrium import rodrigues_equilibrium, rodrigues_lengths
 from cdpr_algebra.model.errors import CdprInputError
 from cdpr_algebra.report.jsonable import jsonable
 from cdpr_algebra.model.pose import matrix_from_rodrigues, angles_from_matrix
@@ -38,204 +39,62 @@ from cdpr_algebra.model.pose import matrix_from_rodrigues, angles_from_matrix
 __all__ = ["UncertaintyResult", "uncertainty_check", "equilibrium"]
 
 
-def _rodrigues(e):
-    """R(e) = I + 2 (E + E E) / (1 + e.e), plain arithmetic (floats or arb balls)."""
-    e1, e2, e3 = e
-    n2 = 1 + e1 * e1 + e2 * e2 + e3 * e3
-    E = [[0, -e3, e2], [e3, 0, -e1], [-e2, e1, 0]]
-    EE = [[sum(E[i][k] * E[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
-    return [[(1 if i == j else 0) + 2 * (E[i][j] + EE[i][j]) / n2 for j in range(3)] for i in range(3)]
+def _flat(rows) -> list:
+    return [v for row in rows for v in row]
 
 
-def _mat3(X, Y):
-    return [[X[i][0] * Y[0][j] + X[i][1] * Y[1][j] + X[i][2] * Y[2][j] for j in range(3)] for i in range(3)]
-
-
-_DE = ([[0, 0, 0], [0, 0, -1], [0, 1, 0]], [[0, 0, 1], [0, 0, 0], [-1, 0, 0]], [[0, -1, 0], [1, 0, 0], [0, 0, 0]])
-
-
-def _rot_and_derivatives(R0, e, derivatives=True):
-    """R = R0 R(e) and dR/de_v (v = 0, 1, 2), plain arithmetic (floats or balls), computed once per box."""
-    e1, e2, e3 = e
-    n2 = 1 + e1 * e1 + e2 * e2 + e3 * e3
-    E = [[0, -e3, e2], [e3, 0, -e1], [-e2, e1, 0]]
-    EE = _mat3(E, E)
-    N = [[2 * (E[i][j] + EE[i][j]) for j in range(3)] for i in range(3)]
-    inv = 1 / n2
-    Re = [[(1 if i == j else 0) + N[i][j] * inv for j in range(3)] for i in range(3)]
-    if not derivatives:
-        return _mat3(R0, Re), None
-    dR = []
-    for v in range(3):
-        # d(E E)/de_v = dE E + E dE with dE the constant generator of axis v
-        dE = _DE[v]
-        dEE = _mat3(dE, E)
-        EdE = _mat3(E, dE)
-        f = 2 * e[v] * inv * inv
-        dRe = [[2 * (dE[i][j] + dEE[i][j] + EdE[i][j]) * inv - N[i][j] * f for j in range(3)] for i in range(3)]
-        dR.append(_mat3(R0, dRe))
-    return _mat3(R0, Re), dR
+def _equilibrium_values(z, A, c, rho, R0, f) -> tuple:
+    """The generated 6-cable equilibrium system (:mod:`cdpr_algebra.generated.rodrigues_equilibrium`) at z = (G, e,
+    lam): its 12 equations, then dF/dz row by row; plain arithmetic (floats or arb balls), q = 1 / (1 + e.e) formed
+    in that arithmetic."""
+    e = z[3:6]
+    q = 1 / (1 + e[0] * e[0] + e[1] * e[1] + e[2] * e[2])
+    return rodrigues_equilibrium(*z, q, *_flat(A), *_flat(c), *rho, *_flat(R0), *f)
 
 
 class _LengthModel:
-    """The six cable-length equations f_i = |A_i - G - R c_i|^2 - rho_i^2 of the pose x = (G, e) and the wrench
-    matrix (columns (s_i ; R c_i x s_i)), in plain arithmetic for one parameter set (balls)."""
+    """The six cable-length equations f_i = |A_i - G - R c_i|^2 - rho_i^2 of the pose x = (G, e), their Jacobian
+    and the wrench matrix (columns (s_i ; R c_i x s_i)): the first six rows of the generated equilibrium system and
+    its statics block d(statics)/d lam (generated together as ``rodrigues_lengths``), for one parameter set.  Balls (lists) by default; with ``floats`` numpy
+    arrays of floats (preconditioners and midpoints)."""
 
-    def __init__(self, R0, A, c, rho):
+    def __init__(self, R0, A, c, rho, floats: bool = False):
         self.R0 = [[float(R0[i][j]) for j in range(3)] for i in range(3)]
-        self.A, self.c, self.rho = A, c, rho
+        self.A, self.c, self.rho, self.floats = A, c, rho, floats
 
-    def _parts(self, x, derivatives=False):
-        G, e = x[0:3], x[3:6]
-        R, dR = _rot_and_derivatives(self.R0, e, derivatives)
-        out = []
-        for i in range(6):
-            ci = self.c[i]
-            cc = [R[a][0] * ci[0] + R[a][1] * ci[1] + R[a][2] * ci[2] for a in range(3)]
-            s = [self.A[i][k] - G[k] - cc[k] for k in range(3)]
-            out.append((ci, cc, s))
-        return R, dR, out
+    def _values(self, x):
+        x = [float(v) for v in x[:6]] if self.floats else list(x[:6])
+        e = x[3:6]
+        q = 1 / (1 + e[0] * e[0] + e[1] * e[1] + e[2] * e[2])
+        return rodrigues_lengths(*x, q, *_flat(self.A), *_flat(self.c), *self.rho, *_flat(self.R0))
+
+    def _out(self, rows):
+        return np.array(rows, dtype=float) if self.floats else rows
 
     def F(self, x):
-        _, _, parts = self._parts(x)
-        return [s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - self.rho[i] * self.rho[i] for i, (_, _, s) in enumerate(parts)]
+        return self._out(list(self._values(x)[:6]))
 
     def J(self, x):
-        _, dR, parts = self._parts(x, True)
-        rows = []
-        for ci, cc, s in parts:
-            row = [-2 * s[0], -2 * s[1], -2 * s[2]]
-            for v in range(3):
-                D = dR[v]
-                dc = [D[a][0] * ci[0] + D[a][1] * ci[1] + D[a][2] * ci[2] for a in range(3)]
-                row.append(-2 * (s[0] * dc[0] + s[1] * dc[1] + s[2] * dc[2]))
-            rows.append(row)
-        return rows
+        v = self._values(x)
+        return self._out([list(v[6 + 6 * r:12 + 6 * r]) for r in range(6)])
 
     def M(self, x):
-        _, _, parts = self._parts(x)
-        cols = [s + [cc[1] * s[2] - cc[2] * s[1], cc[2] * s[0] - cc[0] * s[2], cc[0] * s[1] - cc[1] * s[0]]
-                for _, cc, s in parts]
-        return [[cols[i][a] for i in range(6)] for a in range(6)]
+        v = self._values(x)
+        return self._out([list(v[42 + 6 * a:48 + 6 * a]) for a in range(6)])
 
 
-class _LengthModelFloat:
-    """The same in numpy (floats), for preconditioners and midpoints."""
-
-    def __init__(self, R0, A, c, rho):
-        self.R0 = np.asarray(R0, dtype=float)
-        self.A, self.c, self.rho = np.asarray(A, float), np.asarray(c, float), np.asarray(rho, float)
-
-    def _R(self, e, derivatives=False):
-        R, dR = _rot_and_derivatives(self.R0.tolist(), [float(v) for v in e], derivatives)
-        return np.array(R), None if dR is None else np.array(dR)
-
-    def F(self, x):
-        x = np.asarray(x, float)
-        R, _ = self._R(x[3:6])
-        s = self.A - x[:3] - self.c @ R.T
-        return np.sum(s * s, axis=1) - self.rho ** 2
-
-    def J(self, x):
-        x = np.asarray(x, float)
-        R, dR = self._R(x[3:6], True)
-        s = self.A - x[:3] - self.c @ R.T
-        dc = np.einsum("vab,ib->iva", dR, self.c)  # (6, 3, 3)
-        return np.concatenate([-2 * s, -2 * np.einsum("ia,iva->iv", s, dc)], axis=1)
-
-    def M(self, x):
-        x = np.asarray(x, float)
-        R, _ = self._R(x[3:6])
-        cc = self.c @ R.T
-        s = self.A - x[:3] - cc
-        return np.vstack([s.T, np.cross(cc, s).T])
-
-
-def _system(R0, Q, d, A, c, rho, arb_mode=False):
-    """F(z) and J(z) (finite differences are not rigorous: J is written out) of the 12 equations for parameters
-    A (6x3), c (6x3), rho (6) (floats or balls).  Plain arithmetic throughout."""
+def _system(R0, Q, d, A, c, rho):
+    """F(z) and J(z) of the 12 equations (module doc; generated, :func:`_equilibrium_values`) for parameters
+    A (6x3), c (6x3), rho (6) (floats or balls)."""
     R0 = [[float(R0[i][j]) for j in range(3)] for i in range(3)]
     rhs = [-Q * float(d[k]) for k in range(3)] + [0, 0, 0]
 
-    def pose(z):
-        G, e = z[0:3], z[3:6]
-        Re = _rodrigues(e)
-        R = [[sum(R0[i][k] * Re[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
-        return G, e, R
-
     def F(z):
-        G, e, R = pose(z)
-        lam = z[6:12]
-        out = []
-        cols = []
-        for i in range(6):
-            cc = [sum(R[a][k] * c[i][k] for k in range(3)) for a in range(3)]
-            s = [A[i][k] - G[k] - cc[k] for k in range(3)]
-            out.append(s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - rho[i] * rho[i])
-            cols.append(s + [cc[1] * s[2] - cc[2] * s[1], cc[2] * s[0] - cc[0] * s[2], cc[0] * s[1] - cc[1] * s[0]])
-        for a in range(6):
-            out.append(sum(lam[i] * cols[i][a] for i in range(6)) - rhs[a])
-        return out
+        return list(_equilibrium_values(list(z), A, c, rho, R0, rhs)[:12])
 
     def J(z):
-        # derivatives of R(e) by the quotient rule, entries in plain arithmetic
-        G, e, R = pose(z)
-        lam = z[6:12]
-        e1, e2, e3 = e
-        n2 = 1 + e1 * e1 + e2 * e2 + e3 * e3
-        E = [[0, -e3, e2], [e3, 0, -e1], [-e2, e1, 0]]
-        EE = [[sum(E[i][k] * E[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
-        N = [[2 * (E[i][j] + EE[i][j]) for j in range(3)] for i in range(3)]
-        dRe = []
-        for v in range(3):
-            dE = [[0, 0, 0], [0, 0, 0], [0, 0, 0]]
-            if v == 0:
-                dE[1][2], dE[2][1] = -1, 1
-            elif v == 1:
-                dE[0][2], dE[2][0] = 1, -1
-            else:
-                dE[0][1], dE[1][0] = -1, 1
-            dEE = [[sum(dE[i][k] * E[k][j] + E[i][k] * dE[k][j] for k in range(3)) for j in range(3)] for i in range(3)]
-            dn2 = 2 * e[v]
-            dRe.append([[(2 * (dE[i][j] + dEE[i][j]) * n2 - N[i][j] * dn2) / (n2 * n2) for j in range(3)]
-                        for i in range(3)])
-        dR = [[[sum(R0[i][k] * dRe[v][k][j] for k in range(3)) for j in range(3)] for i in range(3)] for v in range(3)]
-        rows = [[0] * 12 for _ in range(12)]
-        s_all, cc_all, dcc_all = [], [], []
-        for i in range(6):
-            cc = [sum(R[a][k] * c[i][k] for k in range(3)) for a in range(3)]
-            s = [A[i][k] - G[k] - cc[k] for k in range(3)]
-            dcc = [[sum(dR[v][a][k] * c[i][k] for k in range(3)) for a in range(3)] for v in range(3)]
-            # length equation
-            for k in range(3):
-                rows[i][k] = -2 * s[k]
-            for v in range(3):
-                rows[i][3 + v] = -2 * (s[0] * dcc[v][0] + s[1] * dcc[v][1] + s[2] * dcc[v][2])
-            s_all.append(s)
-            cc_all.append(cc)
-            dcc_all.append(dcc)
-        for i in range(6):
-            s, cc, dcc = s_all[i], cc_all[i], dcc_all[i]
-            col = s + [cc[1] * s[2] - cc[2] * s[1], cc[2] * s[0] - cc[0] * s[2], cc[0] * s[1] - cc[1] * s[0]]
-            for a in range(6):
-                rows[6 + a][6 + i] = col[a]
-            # d col / dG_k: s -> -e_k, m = cc x s -> cc x (-e_k)
-            for k in range(3):
-                ek = [1 if q == k else 0 for q in range(3)]
-                dm = [-(cc[1] * ek[2] - cc[2] * ek[1]), -(cc[2] * ek[0] - cc[0] * ek[2]), -(cc[0] * ek[1] - cc[1] * ek[0])]
-                dcol = [-ek[0], -ek[1], -ek[2]] + dm
-                for a in range(6):
-                    rows[6 + a][k] = rows[6 + a][k] + lam[i] * dcol[a]
-            for v in range(3):
-                dcv = dcc[v]
-                dsv = [-dcv[0], -dcv[1], -dcv[2]]
-                dm = [dcv[1] * s[2] - dcv[2] * s[1] + cc[1] * dsv[2] - cc[2] * dsv[1],
-                      dcv[2] * s[0] - dcv[0] * s[2] + cc[2] * dsv[0] - cc[0] * dsv[2],
-                      dcv[0] * s[1] - dcv[1] * s[0] + cc[0] * dsv[1] - cc[1] * dsv[0]]
-                dcol = dsv + dm
-                for a in range(6):
-                    rows[6 + a][3 + v] = rows[6 + a][3 + v] + lam[i] * dcol[a]
-        return rows
+        v = _equilibrium_values(list(z), A, c, rho, R0, rhs)
+        return [list(v[12 + 12 * r:24 + 12 * r]) for r in range(12)]
 
     return F, J
 
@@ -504,8 +363,8 @@ def _pose_region_proof(robot, cables, R0, G, Ab, cb, rb, rp, re, max_boxes):
     lam_lo, lam_hi = np.full(6, np.inf), np.full(6, -np.inf)
     min_width = 1e-4 * (region_hi - region_lo)
     mb = _LengthModel(R0, Ab, cb, rb)
-    mf = _LengthModelFloat(R0, [[float(v) for v in row] for row in Ab], [[float(v) for v in row] for row in cb],
-                           [float(v) for v in rb])
+    mf = _LengthModel(R0, [[float(v) for v in row] for row in Ab], [[float(v) for v in row] for row in cb],
+                      [float(v) for v in rb], floats=True)
     eye = arb_mat(6, 6, [1 if i == j else 0 for i in range(6) for j in range(6)])
     while stack:
         lo, hi = stack.pop()

@@ -320,13 +320,18 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
         acc[a[better]] = diff[better]
         wind[a[better]] = c[better]
         active = a[~conv & (status[a] == "")]
-    # out of samples: finite if the last estimate is decent, else the endgame did not converge
-    for i in active:
-        if np.isfinite(acc[i]) and acc[i] <= 1e-5:
-            status[i] = SINGULAR
-        else:
-            status[i] = ENDGAME_FAILED
-            xend[i] = x[i]
+    # out of samples: finite if the best estimate is decent and solves H = 0, else the endgame did not converge
+    decent = np.array([i for i in active if np.isfinite(acc[i]) and acc[i] <= 1e-5], dtype=int)
+    solves = np.zeros(len(decent), dtype=bool)
+    if decent.size:
+        with np.errstate(all="ignore"):
+            Hd = homotopy.evaluate(xend[decent], np.zeros(decent.size, dtype=complex))
+            resid = np.max(np.abs(Hd), axis=1) / (1 + np.max(np.abs(xend[decent]), axis=1))
+        solves = resid <= o.finite_residual
+    status[decent[solves]] = SINGULAR
+    for i in set(active.tolist()) - set(decent[solves].tolist()):
+        status[i] = ENDGAME_FAILED
+        xend[i] = x[i]
     return EndgameResult(x=xend, status=status, winding=wind, accuracy=acc, t=r.astype(complex), steps=steps,
                          xlast=x, xprev=xprev)
 
