@@ -18,7 +18,8 @@ This script writes, from those expressions only (sympy, common subexpressions sh
     cdpr_algebra/generated/cubic_distance.py
         MONOMIALS                         the exponents (i, j, k), the coefficient order
         ed_system(y0..y3, mu, lam, c0..c19, a0..a3, b0, b1) -> 6 equations, then dF/dz row by row (36)
-        ed_direction(y0..y3, mu, lam, d0..d19)              -> dF/dc . d (6)
+        ed_directional(y0..y3, mu, lam, c0..c19, a0..a3, b0, b1, d0..d19)
+                                                            -> the same 42 outputs, then dF/dc . d (6)
         lagrange_system(y1, y2, y3, lam, c0..c19)           -> 4 equations, then dF/d(y, lam) row by row (16)
         CRITICAL_SET_ROWS                 (16, 20, 20) integers: row p, monomial m, coefficient j
 
@@ -117,8 +118,9 @@ def generate() -> dict:
         "dF/dz row by row.")
     direction = [sp.expand(sum(sp.diff(e, cj) * dj for cj, dj in zip(c, d))) for e in ed]
     dir_src = function_source(
-        "ed_direction", z + list(d), direction,
-        "dF/dc . d for the system of ed_system (it is linear in c): 6 entries.")
+        "ed_directional", z + list(c) + list(a) + list(b) + list(d), ed + _jacobian_rows(ed, z) + direction,
+        "ed_system's 6 equations and 36 Jacobian entries, then dF/dc . d (6; F is linear in c), sharing their "
+        "common subexpressions.")
     y = list(Y[1:])
     lg = lagrange_equations(y, lam, c)
     lg_src = function_source(

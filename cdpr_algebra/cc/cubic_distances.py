@@ -9,7 +9,7 @@ import time
 from dataclasses import dataclass
 import numpy as np
 
-from cdpr_algebra.generated.cubic_distance import MONOMIALS, ed_direction, ed_system, lagrange_system
+from cdpr_algebra.generated.cubic_distance import MONOMIALS, ed_directional, ed_system, lagrange_system
 from cdpr_algebra.homotopy.endgame import track_paths
 from cdpr_algebra.homotopy.many_targets import chart_options, solve_targets
 from cdpr_algebra.homotopy.results import FAILURES, SINGULAR, SUCCESS
@@ -32,16 +32,19 @@ def columns(values, n: int, dtype=complex) -> np.ndarray:
 def _ed_parts(Z, C, a, b, jac=True, dC=None):
     """The generated projective ED system (:func:`cdpr_algebra.generated.cubic_distance.ed_system`) at the chart
     points Z (N, 6) for the cubics C: (N, 20) rows, or one coefficient vector shared by all.  Returns [F (N, 6)],
-    plus J (N, 6, 6) with ``jac``, plus dF/dc . dC (N, 6) for a direction dC (N, 20)."""
+    plus J (N, 6, 6) with ``jac``, plus dF/dc . dC (N, 6) for a direction dC (N, 20) (then J is returned too)."""
     N = len(Z)
     z = np.asfortranarray(Z).T  # contiguous columns
     c = np.asfortranarray(C).T if np.ndim(C) == 2 else C
-    vals = ed_system(*z, *c, *a, *b)
+    if dC is None:
+        vals = ed_system(*z, *c, *a, *b)
+    else:
+        vals = ed_directional(*z, *c, *a, *b, *np.asfortranarray(dC).T)
     out = [columns(vals[:6], N)]
-    if jac:
-        out.append(columns(vals[6:], N).reshape(N, 6, 6))
+    if jac or dC is not None:
+        out.append(columns(vals[6:42], N).reshape(N, 6, 6))
     if dC is not None:
-        out.append(columns(ed_direction(*z, *np.asfortranarray(dC).T), N))
+        out.append(columns(vals[42:], N))
     return out
 
 
@@ -79,9 +82,9 @@ class _EDSystem:
     def evaluate_and_jacobian(self, Z, C):
         return tuple(self.parts(Z, C))
 
-    def parameter_direction(self, Z, dC):
-        """dF/dc . dC (F is linear in c)."""
-        return columns(ed_direction(*np.asfortranarray(Z).T, *np.asfortranarray(dC).T), len(Z))
+    def evaluate_directional(self, Z, C, dC):
+        """F, dF/dz and dF/dc . dC (F is linear in c) in one generated evaluation."""
+        return tuple(self.parts(Z, C, dC=dC))
 
 
 class _LinearProductStart:

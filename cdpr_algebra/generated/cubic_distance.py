@@ -77,37 +77,98 @@ def ed_system(y0, y1, y2, y3, mu, lam, c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c
     return (-lam*t1 - lam*t16 - lam*t21 - lam*t3 - lam*t5 - lam*t7 - lam*t9 - t10*t11 - t13*y2 - t18*y1 + mu*y0*y1, -lam*t22 - lam*t23 - lam*t24 - lam*t25 - lam*t26 - lam*t28 - lam*t30 - t11*t14 - t13*y1 - t31*y2 + mu*y0*y2, -lam*t32 - lam*t33 - lam*t34 - lam*t35 - lam*t36 - lam*t39 - lam*t42 - t38*y1 - t40*y1 - t43*y2 + mu*y0*y3, c0*y0*y0*y0 + c19*y1*y1*y1 + c3*y3*y3*y3 + c9*y2*y2*y2 + t1*y1 + t22*y2 + t23*y2 + t24*y2 + t3*y1 + t32*y3 + t33*y3 + t34*y3 + t36*y3 + t39*y3 + t44*y0 + t45*y0 + t46*y0 + t47*y2 + t48*y1 + t5*y1, -1 + a0*y0 + a1*y1 + a2*y2 + a3*y3, -1 + b0*mu + b1*lam, mu*y1 - c10*t50 - c11*t12 - t11*y2 - t15*t51, -t18 - t52 - c16*t50 - t20*t53 - 6*c19*t51, t55, t57, t14, -t59, mu*y2 - c4*t50 - c5*t12 - c7*t54 - t11*y1, t55, -t31 - t52 - c7*t50 - t27*t51 - 6*c9*t53, t61, t10, -t63, mu*y3 - c1*t50 - c2*t17 - lam*t64 - lam*t65, t57, t61, -t52 - c2*t50 - c6*t54 - t51*t66 - 6*c3*t12, t8, -t67, t44 + t45 + t46 + c1*t41 + c13*t19 + c4*t29 + t64*y3 + t65*y3 + 2*c10*t14 + 3*c0*t0, t59, t63, t67, 0, 0, a0, a1, a2, a3, 0, 0, 0, 0, 0, 0, b0, b1,)
 
 
-def ed_direction(y0, y1, y2, y3, mu, lam, d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10, d11, d12, d13, d14, d15, d16, d17, d18, d19):
-    """dF/dc . d for the system of ed_system (it is linear in c): 6 entries."""
+def ed_directional(y0, y1, y2, y3, mu, lam, c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c10, c11, c12, c13, c14, c15, c16, c17, c18, c19, a0, a1, a2, a3, b0, b1, d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10, d11, d12, d13, d14, d15, d16, d17, d18, d19):
+    """ed_system's 6 equations and 36 Jacobian entries, then dF/dc . d (6; F is linear in c), sharing their common subexpressions."""
     t0 = y0*y0
-    t1 = lam*t0
+    t1 = c10*t0
     t2 = y3*y3
-    t3 = lam*t2
+    t3 = c12*t2
     t4 = y2*y2
-    t5 = lam*t4
+    t5 = c15*t4
     t6 = y1*y1
-    t7 = lam*t6
-    t8 = lam*y0
-    t9 = t8*y3
-    t10 = d13*t8
-    t11 = y2*y3
-    t12 = d14*lam
-    t13 = d16*y0
-    t14 = 2*lam
-    t15 = t14*y1
-    t16 = d17*y3
-    t17 = d18*y2
-    t18 = t12*y1
-    t19 = d15*y1
-    t20 = t14*y2
-    t21 = d7*y0
-    t22 = d8*y3
-    t23 = d11*y1
-    t24 = d12*y1
-    t25 = t14*y3
-    t26 = d2*y0
-    t27 = d6*y2
-    return (-d10*t1 - d11*t9 - d12*t3 - d15*t5 - t10*y2 - t11*t12 - t13*t15 - t15*t16 - t15*t17 - 3*d19*t7, -d18*t7 - d4*t1 - d5*t9 - d6*t3 - t10*y1 - t18*y3 - t19*t20 - t20*t21 - t20*t22 - 3*d9*t5, -d1*t1 - d17*t7 - d8*t5 - t18*y2 - t23*t8 - t24*t25 - t25*t26 - t25*t27 - 3*d3*t3 - d5*t8*y2, d0*y0*y0*y0 + d19*y1*y1*y1 + d3*y3*y3*y3 + d9*y2*y2*y2 + t13*t6 + t16*t6 + t17*t6 + t19*t4 + t2*t24 + t2*t26 + t2*t27 + t21*t4 + t22*t4 + d1*t0*y3 + d10*t0*y1 + d14*t11*y1 + d4*t0*y2 + d5*t11*y0 + t23*y0*y3 + d13*y0*y1*y2, 0, 0,)
+    t7 = 3*t6
+    t8 = c19*t7
+    t9 = y0*y3
+    t10 = c11*t9
+    t11 = y0*y2
+    t12 = c13*lam
+    t13 = lam*y3
+    t14 = c14*t13
+    t15 = y0*y1
+    t16 = 2*c16
+    t17 = t15*t16
+    t18 = 2*t13
+    t19 = c17*t18
+    t20 = y1*y2
+    t21 = 2*c18
+    t22 = t20*t21
+    t23 = c18*t6
+    t24 = c4*t0
+    t25 = c6*t2
+    t26 = 3*t4
+    t27 = c9*t26
+    t28 = c5*t9
+    t29 = 2*c15
+    t30 = t20*t29
+    t31 = 2*t11
+    t32 = c7*t31
+    t33 = c8*t18
+    t34 = c1*t0
+    t35 = c17*t6
+    t36 = c8*t4
+    t37 = 3*t2
+    t38 = c3*t37
+    t39 = c11*t15
+    t40 = c14*y2
+    t41 = lam*t40
+    t42 = c5*t11
+    t43 = c12*t18
+    t44 = 2*t9
+    t45 = c2*t44
+    t46 = c6*t18
+    t47 = y0*y0*y0
+    t48 = y1*y1*y1
+    t49 = y3*y3*y3
+    t50 = y2*y2*y2
+    t51 = c16*t6
+    t52 = c2*t2
+    t53 = c7*t4
+    t54 = c13*t15
+    t55 = t40*y3
+    t56 = lam*y0
+    t57 = 2*t56
+    t58 = lam*y1
+    t59 = -mu*y0
+    t60 = lam*y2
+    t61 = 2*t60
+    t62 = -t14 - c15*t61 - t12*y0 - t21*t58
+    t63 = 2*c17
+    t64 = -t41 - t43 - c11*t56 - t58*t63
+    t65 = y1*y3
+    t66 = t1 + t10 + t17 + t22 + t3 + t5 + t55 + t8 + c13*t11 + t63*t65
+    t67 = c14*y1
+    t68 = -t46 - c5*t56 - c8*t61 - lam*t67
+    t69 = 2*y2*y3
+    t70 = t23 + t24 + t25 + t27 + t28 + t30 + t32 + t54 + c8*t69 + t67*y3
+    t71 = c11*y1
+    t72 = c5*y2
+    t73 = 2*c12
+    t74 = t34 + t35 + t36 + t38 + t39 + t42 + t45 + c6*t69 + t40*y1 + t65*t73
+    t75 = 2*t15
+    t76 = lam*t0
+    t77 = lam*t2
+    t78 = lam*t4
+    t79 = lam*t9
+    t80 = d13*lam
+    t81 = d14*t13
+    t82 = 2*lam*t20
+    t83 = lam*t6
+    t84 = d11*t15
+    t85 = d14*t20
+    t86 = d5*t11
+    t87 = d12*y1
+    t88 = d6*y2
+    return (-lam*t1 - lam*t10 - lam*t17 - lam*t22 - lam*t3 - lam*t5 - lam*t8 - t11*t12 - t14*y2 - t19*y1 + mu*y0*y1, -lam*t23 - lam*t24 - lam*t25 - lam*t27 - lam*t28 - lam*t30 - lam*t32 - t12*t15 - t14*y1 - t33*y2 + mu*y0*y2, -lam*t34 - lam*t35 - lam*t36 - lam*t38 - lam*t39 - lam*t42 - lam*t45 - t41*y1 - t43*y1 - t46*y2 + mu*y0*y3, c0*t47 + c19*t48 + c3*t49 + c9*t50 + t1*y1 + t23*y2 + t24*y2 + t25*y2 + t3*y1 + t34*y3 + t35*y3 + t36*y3 + t39*y3 + t42*y3 + t5*y1 + t51*y0 + t52*y0 + t53*y0 + t54*y2 + t55*y1, -1 + a0*y0 + a1*y1 + a2*y2 + a3*y3, -1 + b0*mu + b1*lam, mu*y1 - c10*t57 - c11*t13 - t12*y2 - t16*t58, -t19 - t59 - c16*t57 - t21*t60 - 6*c19*t58, t62, t64, t15, -t66, mu*y2 - c4*t57 - c5*t13 - c7*t61 - t12*y1, t62, -t33 - t59 - c7*t57 - t29*t58 - 6*c9*t60, t68, t11, -t70, mu*y3 - c1*t57 - c2*t18 - lam*t71 - lam*t72, t64, t68, -t59 - c2*t57 - c6*t61 - t58*t73 - 6*c3*t13, t9, -t74, t51 + t52 + t53 + c1*t44 + c10*t75 + c13*t20 + c4*t31 + t71*y3 + t72*y3 + 3*c0*t0, t66, t70, t74, 0, 0, a0, a1, a2, a3, 0, 0, 0, 0, 0, 0, b0, b1, -d10*t76 - d11*t79 - d12*t77 - d15*t78 - d18*t82 - t11*t80 - t81*y2 - d16*lam*t75 - d17*t18*y1 - d19*lam*t7, -d15*t82 - d18*t83 - d4*t76 - d5*t79 - d6*t77 - t15*t80 - t81*y1 - d7*lam*t31 - d8*t18*y2 - d9*lam*t26, -d1*t76 - d17*t83 - d8*t78 - lam*t84 - lam*t85 - lam*t86 - t18*t87 - t18*t88 - d2*lam*t44 - d3*lam*t37, d0*t47 + d19*t48 + d3*t49 + d9*t50 + t2*t87 + t2*t88 + t84*y3 + t85*y3 + t86*y3 + d1*t0*y3 + d10*t0*y1 + d13*t15*y2 + d15*t4*y1 + d16*t6*y0 + d17*t6*y3 + d18*t6*y2 + d2*t2*y0 + d4*t0*y2 + d7*t4*y0 + d8*t4*y3, 0, 0,)
 
 
 def lagrange_system(y1, y2, y3, lam, c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c10, c11, c12, c13, c14, c15, c16, c17, c18, c19):

@@ -97,8 +97,8 @@ class LabelledParameterHomotopy:
     """H(Y, t) = F(Y; t p1 + (1 - t) P0[k]) for many targets P0 (K, m); path label k / LABEL_SCALE last.
 
     F must be affine in the parameters (e.g. the coefficients of a polynomial), so dH/dt = F(Y; p1 - p0) -
-    F(Y; 0): two plain evaluations instead of the parameter Jacobian (or one, when F offers
-    ``parameter_direction(Y, dP)`` = dF/dp . dP).  F offers ``evaluate(Y, P)`` and ``evaluate_and_jacobian(Y, P)``
+    F(Y; 0): two plain evaluations instead of the parameter Jacobian (or none, when F offers
+    ``evaluate_directional(Y, P, dP)`` = (F, dF/dY, dF/dp . dP), as the DGP's systems do).  F offers ``evaluate(Y, P)`` and ``evaluate_and_jacobian(Y, P)``
     over batches with one parameter row per point (a :class:`.systems.PolynomialSystem` does).  ``chart``: the
     unknowns of F are chart coordinates (y0 first)."""
 
@@ -120,7 +120,11 @@ class LabelledParameterHomotopy:
         N = len(x)
         H = np.empty((N, self.n), dtype=complex)
         Hx = np.zeros((N, self.n, self.n), dtype=complex)
-        F, J = self.F.evaluate_and_jacobian(Y, P)
+        directional = getattr(self.F, "evaluate_directional", None) if want_t else None
+        if directional is not None:
+            F, J, D = directional(Y, P, self.p1 - p0)
+        else:
+            F, J = self.F.evaluate_and_jacobian(Y, P)
         H[:, :-1] = F
         H[:, -1] = x[:, -1] - k / LABEL_SCALE
         Hx[:, :-1, :-1] = J
@@ -128,9 +132,8 @@ class LabelledParameterHomotopy:
         if not want_t:
             return H, Hx
         Ht = np.zeros((N, self.n), dtype=complex)
-        direction = getattr(self.F, "parameter_direction", None)
-        if direction is not None:
-            Ht[:, :-1] = direction(Y, self.p1 - p0)
+        if directional is not None:
+            Ht[:, :-1] = D
         else:
             both = self.F.evaluate(np.concatenate([Y, Y]), np.concatenate([self.p1 - p0, np.zeros_like(p0)]))
             Ht[:, :-1] = both[:N] - both[N:]
