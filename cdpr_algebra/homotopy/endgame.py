@@ -59,6 +59,9 @@ class EndgameOptions:
     * ``min_valuation`` [-0.02]: a stable valuation estimate below this is at infinity;
     * ``singular_condition`` [1e10]: cond(dF/dx) beyond this is singular;
     * ``refine_tol`` [1e-13]: last Newton update accepted as full double precision;
+    * ``cauchy`` [True]: run the Cauchy endgame on paths that do not finish regular; False leaves them
+      ``endgame_failed`` (undecided) at once, for solves that keep only regular endpoints (the generic instance
+      of a many-target homotopy, whose total-degree paths mostly go to infinity);
     * ``settled_update`` [0, off]: a last Newton update (relative) at or below this also ends a path regular at
       the fast finish when the condition number is below ``singular_condition`` (for chart points with large
       coordinates, whose updates stall above ``refine_tol`` although Newton has converged);
@@ -94,6 +97,7 @@ class EndgameOptions:
     singular_condition: float = 1e10
     refine_tol: float = 1e-13
     settled_update: float = 0.0
+    cauchy: bool = True
     finite_residual: float = 1e-6
     cluster_tol: float = 1e-6
     projective: bool = False
@@ -509,6 +513,10 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
             status[gi] = SUCCESS
             acc[gi] = upd[fin_c]
         rest = np.flatnonzero(status == "")
+    if rest.size and not eo.cauchy:  # no endgame asked for: these paths stay undecided (failed)
+        status[rest] = ENDGAME_FAILED
+        tfin[rest] = 0.0
+        rest = rest[:0]
     if rest.size:
         in_chart = chart is not None or proj is not None
         hend = proj if proj is not None else homotopy

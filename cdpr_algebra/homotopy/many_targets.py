@@ -193,14 +193,18 @@ class ManyTargetSolver:
         self._generic = None
 
     def generic(self):
-        """(p1, the finite regular solutions of F(x; p1) in the chart, failed paths of the total-degree run)."""
+        """(p1, the finite regular solutions of F(x; p1) in the chart, paths of the total-degree run that did not end
+        regular).  Only regular endpoints are kept (the solutions of a generic instance are regular), so the
+        paths that do not finish regular (most go to infinity) skip the Cauchy endgame."""
         if self._generic is not None:
             return self._generic
         rng = np.random.default_rng([self.seed, 2002])
         p1 = rng.normal(size=self.system.m) + 1j * rng.normal(size=self.system.m)
         gamma = np.exp(2j * np.pi * rng.random())
         hom = ChartTotalDegreeStart(self.Fh, self.system.degrees, p1, gamma)
-        tr = track_paths(hom, hom.start_solutions(self.chart), chart_options(), seed=self.seed)
+        options = chart_options()
+        options = replace(options, endgame=replace(options.endgame, cauchy=False))
+        tr = track_paths(hom, hom.start_solutions(self.chart), options, seed=self.seed)
         sols = group_solutions(tr)
         S = np.array([s.x for s in sols if not s.singular]).reshape(-1, self.Fh.n)
         self._generic = (p1, S, sum(tr.count(f) for f in FAILURES))
