@@ -1,6 +1,6 @@
 """cdpr_algebra: every equilibrium of underconstrained cable-driven parallel robots.
 
-Data flow: robot file -> :class:`Robot` (``model/``) -> problem (``igp/``, ``dgp/``, ``bp/``, ``cc/``) -> solver
+Data flow: robot file -> :class:`Robot` (``model/``) -> problem (``igp/``, ``dgp/``, ``bp/``, ``cc/``, ``track/``) -> solver
 (``homotopy/``, ``intervals/``) -> filter -> certificate (``certificates/``) -> result -> table/JSON/plot
 (``report/``) -> CLI (``cli/``).  The README's "Architecture" section draws the layers.
 
@@ -31,6 +31,8 @@ _API = {
     "cable_configurations": ("cdpr_algebra.cc.configurations", "valid_configurations"),
     "robustness_radius": ("cdpr_algebra.cc.radii", "cc_radii"),
     "plot_equilibrium": ("cdpr_algebra.report.plot", "plot_equilibria"),
+    "track_equilibrium": ("cdpr_algebra.track.follow", "track"),
+    "LengthTrajectory": ("cdpr_algebra.track.trajectory", "LengthTrajectory"),
 }
 
 __all__ = sorted(_API)

@@ -19,6 +19,7 @@ EXPECTED = {  # public name -> the object's own module and name
     "cable_configurations": ("cdpr_algebra.cc.configurations", "valid_configurations"),
     "robustness_radius": ("cdpr_algebra.cc.radii", "cc_radii"),
     "plot_equilibrium": ("cdpr_algebra.report.plot", "plot_equilibria"),
+    "track_equilibrium": ("cdpr_algebra.track.follow", "track"),
 }
 
 
@@ -91,5 +92,8 @@ def test_every_result_states_its_status():
 
     sub = solve_taut_set_interval(robot1, robot1.lengths, (0, 1, 2))
     assert sub.status == sub.to_dict()["status"] == ("complete" if not sub.undecided else "undecided")
-    for res in (dgp, igp, r, sub):
+    traj = cdpr_algebra.LengthTrajectory(np.array([0.0, 1.0]), np.array([robot1.lengths, [14.0, 10.0, 9.5]]))
+    tr = cdpr_algebra.track_equilibrium(robot1, traj, np.linspace(0, 1, 3))
+    assert tr.status == tr.to_dict()["status"] == "complete" and [e.kind for e in tr.events] == ["slack"]
+    for res in (dgp, igp, r, sub, tr):
         assert res.seconds >= 0

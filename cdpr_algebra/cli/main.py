@@ -7,6 +7,8 @@
     cdpr cc ROBOT --position X Y Z [--angles ..] [--configuration ..] [--ball R] [--uncertainty DA DB DRHO] [--json]
                                                                                           (cc.py)
     cdpr crosscheck ROBOT [--lengths L1 .. Ln] [--taut C1 .. Cm] [--json]                 (crosscheck.py)
+    cdpr track ROBOT [--lengths L1 .. Ln] (--to L1 .. Ln | --trajectory FILE) [--steps N] [--json] [--plot F]
+                                                                                          (track.py)
 
 Exit status: 0 on success, 2 on bad input (one line on stderr naming the field and the problem), 3 when the
 result is incomplete (``dgp``: some subproblem has failed paths or regular endpoints without a Krawczyk
@@ -23,7 +25,7 @@ from cdpr_algebra.model.errors import CdprInputError
 
 from .common import INCOMPLETE, Parser  # noqa: F401  (INCOMPLETE: the documented exit status)
 
-COMMANDS = ("igp", "dgp", "plot", "cc", "crosscheck")  # each a module of this package with add_parser and run
+COMMANDS = ("igp", "dgp", "plot", "cc", "crosscheck", "track")  # each a module of this package with add_parser and run
 
 
 def _command(name):

@@ -52,7 +52,7 @@ def constraint_jacobian(A, B, G, lengths) -> np.ndarray:
     return np.concatenate([s, cross(B - np.asarray(G)[..., None, :], s)], axis=-1) / np.asarray(lengths)[..., None]
 
 
-def _null_space(JT) -> np.ndarray:
+def null_space(JT) -> np.ndarray:
     """Orthonormal null-space basis (..., 6, 6 - rank); stacks must share one rank (else per item)."""
     if JT.shape[-2] == 0:
         return np.broadcast_to(np.eye(6), JT.shape[:-2] + (6, 6))
@@ -73,7 +73,7 @@ def reduced_hessian(A, B, G, tensions, lengths, length_scale: float = 1.0) -> np
     """
     T = np.diag([1.0, 1.0, 1.0] + [1.0 / length_scale] * 3)
     H = T @ hessian(A, B, G, tensions, lengths) @ T
-    N = _null_space(constraint_jacobian(A, B, G, lengths) @ T)
+    N = null_space(constraint_jacobian(A, B, G, lengths) @ T)
     return np.swapaxes(N, -1, -2) @ H @ N
 
 

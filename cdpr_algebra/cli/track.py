@@ -1,0 +1,72 @@
+"""``cdpr track``: follow the robot's equilibrium while its cables move (:mod:`cdpr_algebra.track.follow`).
+
+    cdpr track ROBOT [--lengths L1 .. Ln] --to L1 .. Ln [--steps N] [--json] [--plot FILE]
+    cdpr track ROBOT --trajectory FILE [--steps N] [--json] [--plot FILE]
+
+From the robot's stable equilibrium of lowest potential at the start lengths (``--lengths``, default the robot
+file's), the lengths move straight to ``--to`` (t from 0 to 1), or along the table of ``--trajectory`` (CSV rows
+``t, rho_1 .. rho_n`` or JSON ``{"t": [..], "lengths": [[..], ..]}``).  States are reported at ``--steps`` + 1
+evenly spaced t (default 10 steps) and at every event (slack, taut, fold, jump, singular) between them.  A table
+for people, or ``--json``: ``{"steps": [...], "events": [...], "status", ...}``; ``--plot`` saves tensions and the
+lowest reduced-Hessian eigenvalue against t with the events marked.
+
+Exit status: 0 when the whole trajectory was followed; 3 when tracking stopped (the reason on stderr: a branch
+that ends at a singular wrench matrix, a fold with no landing found, ...); 2 on bad input.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+
+import numpy as np
+
+from cdpr_algebra.model.errors import CdprInputError
+
+from .common import INCOMPLETE, dgp_lengths, finite
+
+
+def add_parser(subparsers) -> None:
+    p = subparsers.add_parser("track", help="follow the equilibrium while the cable lengths change")
+    p.add_argument("robot", help="robot file (.json or .toml)")
+    p.add_argument("--lengths", nargs="+", type=finite("--lengths"), metavar="L",
+                   help="start lengths rho_1 .. rho_n (default: the robot file's)")
+    p.add_argument("--to", nargs="+", type=finite("--to"), metavar="L", help="end lengths rho_1 .. rho_n")
+    p.add_argument("--trajectory", metavar="FILE", help="a table of lengths against t (CSV or JSON)")
+    p.add_argument("--steps", type=int, default=10, metavar="N", help="report states at N + 1 evenly spaced t")
+    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    p.add_argument("--plot", metavar="FILE", help="save a picture of tensions and stability against t")
+
+
+def run(args) -> int:
+    from cdpr_algebra.model.robot import load_robot
+    from cdpr_algebra.track.follow import track, tracking_table
+    from cdpr_algebra.track.trajectory import load_trajectory, straight
+
+    robot = load_robot(args.robot)
+    if args.steps < 1:
+        raise CdprInputError("--steps", f"expected a positive number of steps, got {args.steps}")
+    if (args.to is None) == (args.trajectory is None):
+        raise CdprInputError("--to", "give either --to L1 .. Ln or --trajectory FILE")
+    if args.trajectory is not None:
+        if args.lengths is not None:
+            raise CdprInputError("--lengths", "the trajectory file gives the start lengths")
+        traj = load_trajectory(args.trajectory, robot.n)
+    else:
+        if any(v <= 0 for v in args.to):
+            raise CdprInputError("--to", "cable lengths must be > 0")
+        traj = straight(dgp_lengths(args, robot), np.array(args.to), robot.n)
+    samples = np.linspace(traj.start, traj.end, args.steps + 1)
+    res = track(robot, traj, samples)
+    if args.json:
+        print(json.dumps(res.to_dict()))
+    else:
+        print(tracking_table(res, robot))
+    if args.plot:
+        from cdpr_algebra.track.pictures import save_tracking_figure
+
+        save_tracking_figure(res, robot, args.plot)
+    if not res.complete:
+        print(f"cdpr: tracking stopped (exit status {INCOMPLETE}): {res.reason}", file=sys.stderr)
+        return INCOMPLETE
+    return 0

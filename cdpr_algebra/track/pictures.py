@@ -1,0 +1,50 @@
+"""Pictures of a tracking: tensions and the lowest reduced-Hessian eigenvalue against t, events marked."""
+
+from __future__ import annotations
+
+import numpy as np
+
+COLOURS = {"slack": "tab:orange", "taut": "tab:green", "fold": "tab:red", "jump": "tab:purple", "singular": "k"}
+
+
+def tracking_figure(res, robot):
+    """A matplotlib figure: tensions / Q (top) and the scaled lowest eigenvalue of the reduced Hessian (bottom)
+    at the reported states, with a vertical line at every event."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    states = sorted([(s.t, s) for s in res.steps] + [(e.t, e.state) for e in res.events]
+                    + [(e.t, e.landing) for e in res.events if e.landing is not None], key=lambda v: v[0])
+    t = np.array([v[0] for v in states])
+    tau = np.array([v[1].tensions for v in states]) / robot.load
+    eig = np.array([v[1].min_eigenvalue for v in states])
+    fig, (a1, a2) = plt.subplots(2, 1, sharex=True, figsize=(7, 5))
+    for i in range(robot.n):
+        a1.plot(t, tau[:, i], label=f"cable {i + 1}")
+    a1.set_ylabel("tension / load")
+    a1.legend(fontsize="small", ncol=min(robot.n, 4))
+    a2.plot(t, np.where(np.isfinite(eig), eig, np.nan), color="k")
+    a2.axhline(0.0, color="0.6", lw=0.8)
+    a2.set_ylabel("lowest eigenvalue of H_r (scaled)")
+    a2.set_xlabel("t")
+    seen = set()
+    for e in res.events:
+        for ax in (a1, a2):
+            ax.axvline(e.t, color=COLOURS.get(e.kind, "k"), ls="--", lw=0.8,
+                       label=e.kind if ax is a2 and e.kind not in seen else None)
+        seen.add(e.kind)
+    if seen:
+        a2.legend(fontsize="small")
+    fig.suptitle(f"{robot.name}: {res.status}")
+    fig.tight_layout()
+    return fig
+
+
+def save_tracking_figure(res, robot, path) -> None:
+    fig = tracking_figure(res, robot)
+    fig.savefig(path)
+    import matplotlib.pyplot as plt
+
+    plt.close(fig)
