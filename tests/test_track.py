@@ -87,7 +87,14 @@ def test_fold_jumps_to_a_stable_equilibrium_of_the_dgp(robot):
     kinds = [e.kind for e in res.events]
     assert res.complete and kinds == ["fold", "jump"]
     fold, jump = res.events
-    assert 0.80 < fold.t < 0.81 and fold.state.min_eigenvalue < 1e-4 <= res.steps[0].min_eigenvalue
+    assert 0.80 < fold.t < 0.81 and fold.state.min_eigenvalue < 1e-6 < 1e-4 <= res.steps[0].min_eigenvalue
+    # the fold, checked by the DGP: just before it a stable and an unstable equilibrium lie close to the fold pose,
+    # just after it neither exists (the pair has merged and vanished)
+    def near(t):
+        sols = dgp(robot, traj(t), certify=False).solutions
+        return [s for s in sols if np.abs(s.position - fold.state.position).max() <= 1e-2 * robot.size]
+    before, after = near(fold.t - 1e-7), near(fold.t + 1e-7)
+    assert sorted(s.stable for s in before) == [False, True] and after == []
     landing = jump.landing
     assert landing.stable and jump.energy_released > 0
     assert np.abs(landing.position - fold.state.position).max() > 0.01 * robot.size

@@ -23,6 +23,7 @@ from cdpr_algebra.report.jsonable import jsonable
 
 NEWTON_TOL = 1e-13  # relative size of the last Newton update
 NEWTON_ITERS = 12
+RESIDUAL_TOL = 1e-15  # max |F| over the size of the terms: the rounding level
 
 
 @dataclass(frozen=True)
@@ -70,13 +71,20 @@ def unknowns(position, rotation, lam) -> np.ndarray:
     return encode(np.asarray(position, dtype=float), np.asarray(rotation, dtype=float), np.asarray(lam, dtype=float))
 
 
+def _residual_scale(robot) -> float:
+    return robot.load * (1 + robot.size) + robot.size ** 2 + 1.0
+
+
 def newton(robot, cables, rho, x0, tol: float = NEWTON_TOL, iters: int = NEWTON_ITERS):
     """Real Newton on the taut set's equations at lengths rho from x0.  Returns (x, converged, residual, steps)
-    with the residual max |F| relative to the load and the robot's size."""
+    with the residual max |F| relative to the size of the equations' terms.  Converged: the last update is below
+    ``tol`` (relative), or the residual is at the rounding level (RESIDUAL_TOL) after an update no larger than the
+    one before (near a fold the Jacobian is nearly singular and the updates stall above ``tol``)."""
     fam = fast_family(len(cables))
     p = parameters(robot, cables, rho).astype(complex)
     x = np.array(x0, dtype=float)
-    scale = robot.load * (1 + robot.size) + 1.0
+    scale = _residual_scale(robot)
+    prev = np.inf
     for k in range(iters):
         F, J = fam.evaluate_and_jacobian(x.astype(complex), p)
         F, J = F[0].real, J[0].real
@@ -87,9 +95,15 @@ def newton(robot, cables, rho, x0, tol: float = NEWTON_TOL, iters: int = NEWTON_
         if not np.all(np.isfinite(dx)):
             return x, False, np.inf, k
         x = x + dx
-        if np.abs(dx).max() <= tol * (1 + np.abs(x).max()):
+        step = np.abs(dx).max() / (1 + np.abs(x).max())
+        if step <= tol:
             F = fam.evaluate(x.astype(complex), p)[0].real
             return x, True, float(np.abs(F).max() / scale), k + 1
+        if step <= prev and step <= 1e-6:
+            res = float(np.abs(fam.evaluate(x.astype(complex), p)[0].real).max() / scale)
+            if res <= RESIDUAL_TOL:
+                return x, True, res, k + 1
+        prev = step
     F = fam.evaluate(x.astype(complex), p)[0].real
     return x, False, float(np.abs(F).max() / scale), iters
 

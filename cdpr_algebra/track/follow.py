@@ -255,6 +255,14 @@ def _handle(robot, traj, cur, t_cross, keys, k, events):
         # taut set's equations is singular and beyond which the equilibrium does not exist: the robot jumps
         if branch.wrench_condition(robot, cur) < WRENCH_RANK_TOL:
             raise _Stop(_singular(events, k, cur, "the taut cables' wrench matrix loses rank"))
+        from cdpr_algebra.dgp.solve import prune
+
+        t_after = min(traj.end, cur.t + LANDING_DTS[0] * (traj.end - traj.start))
+        no_pose = prune(robot, traj(t_after), ())
+        if no_pose is not None:  # the lengths stop admitting any pose: the tensions grow without bound
+            tmax = float(np.max(cur.tensions) / robot.load)
+            raise _Stop(_singular(events, k, cur, f"just after t = {cur.t:.12g} the lengths admit no pose ({no_pose});"
+                                  f" the tensions grow without bound (up to {tmax:.4g} times the load here)"))
         located = [(cur.t, ("fold", None), cur, None)]
     else:
         located = []
@@ -284,7 +292,6 @@ def _handle(robot, traj, cur, t_cross, keys, k, events):
             raise _Stop(_singular(events, k, lo, "Newton does not converge after the cable became taut"))
         return _checked(robot, events, k, branch.state(robot, cables, lo.lengths, x, lo.t, resid))
     # fold: the equilibrium stops being stable; the robot jumps
-    events.append(TrackEvent(k, lo.t, "fold", tuple(c + 1 for c in lo.cables), lo))
     # the landing at lengths just past the fold, where the old minimum of the potential has gone: the fold is
     # located to where the steps underflow, so the first tries may still find the old minimum (not a jump)
     landing, why = None, "no try"
@@ -297,6 +304,15 @@ def _handle(robot, traj, cur, t_cross, keys, k, events):
             continue
         if landing is not None or t_land >= traj.end:
             break
+    if landing is not None and np.abs(landing.position - lo.position).max() <= JUMP_MIN * robot.size:
+        # no jump: the branch of this taut set ends where the robot goes on, continuously, with another taut set
+        # (a cable reaching its length or going slack right at the branch's end)
+        for c in sorted(set(landing.cables) - set(lo.cables)):
+            events.append(TrackEvent(k, lo.t, "taut", (c + 1,), lo, note="at the end of the previous taut set's branch"))
+        for c in sorted(set(lo.cables) - set(landing.cables)):
+            events.append(TrackEvent(k, lo.t, "slack", (c + 1,), lo, note="at the end of the previous taut set's branch"))
+        return _checked(robot, events, k, landing)
+    events.append(TrackEvent(k, lo.t, "fold", tuple(c + 1 for c in lo.cables), lo))
     if landing is None:
         raise _Stop(f"fold at t = {lo.t:.12g}: no landing found ({why})")
     if not landing.stable:

@@ -15,7 +15,8 @@ from cdpr_algebra.model.stability import null_space, constraint_jacobian, hessia
 
 from . import branch
 
-PUSH = 1e-3  # the fold pose is pushed by this times the robot's size along the softest mode
+PUSHES = (1e-3, 1e-2, 1e-1)  # the fold pose is pushed by these times the robot's size along the softest mode
+LEFT_BASIN = 1e-2  # a minimizer farther than this (x size) from the fold pose has left the fold's basin
 ACTIVE_TOL = 1e-7  # a cable is taut at the minimizer when rho_i - |A_i B_i| <= this times the robot's size
 
 
@@ -56,9 +57,11 @@ def land(robot, st, rho, t):
     R0 = st.rotation
     d = np.asarray(robot.load_direction, dtype=float)
 
-    def pose(z):
+    L = robot.size
+
+    def pose(z):  # z = (p / L, e): position in robot sizes and Rodrigues parameters, both of order 1
         R = R0 @ matrix_from_rodrigues(*z[3:6])
-        return z[:3], R
+        return z[:3] * L, R
 
     def potential(z):
         p, R = pose(z)
@@ -69,25 +72,36 @@ def land(robot, st, rho, t):
         B = p + robot.platform @ R.T
         return (rho ** 2 - np.sum((robot.base - B) ** 2, axis=1)) / robot.size ** 2
 
-    starts = []
-    if mode is not None:
+    if mode is None:
+        pushes = [(0.0, np.concatenate([st.position / L, np.zeros(3)]))]
+    else:
         dG, th = mode
         n = max(np.linalg.norm(dG), np.linalg.norm(th) * robot.size, 1e-300)
-        for sgn in (1.0, -1.0):
-            e = sgn * PUSH * robot.size * th / n / 2  # small rotation theta ~ 2 e (Rodrigues)
-            R = R0 @ matrix_from_rodrigues(*e)
-            p = G0 + sgn * PUSH * robot.size * dG / n - R @ robot.com
-            starts.append(np.concatenate([p, e]))
-    else:
-        starts.append(np.concatenate([st.position, np.zeros(3)]))
+        pushes = []
+        for push in PUSHES:
+            for sgn in (1.0, -1.0):
+                e = sgn * push * robot.size * th / n / 2  # small rotation theta ~ 2 e (Rodrigues)
+                R = R0 @ matrix_from_rodrigues(*e)
+                p = G0 + sgn * push * robot.size * dG / n - R @ robot.com
+                pushes.append((push, np.concatenate([p / L, e])))
+    # the smallest push that leaves the fold's basin: the robot falls to the nearest minimum, not the lowest one
     best = None
-    for z0 in starts:
-        res = minimize(potential, z0, method="SLSQP", constraints=[{"type": "ineq", "fun": slack}],
-                       options={"ftol": 1e-15, "maxiter": 500})
-        if not res.success and res.status != 8:  # 8: positive directional derivative in line search (at optimum)
+    for push in sorted({v[0] for v in pushes}):
+        found = None
+        for _, z0 in (v for v in pushes if v[0] == push):
+            res = minimize(potential, z0, method="SLSQP", constraints=[{"type": "ineq", "fun": slack}],
+                           options={"ftol": 1e-15, "maxiter": 1000})
+            feasible = np.all(slack(res.x) >= -1e-10)
+            if not feasible or (not res.success and res.status != 8):  # 8: line search stalled (at the optimum)
+                continue
+            if found is None or res.fun < found.fun - 1e-12:
+                found = res
+        if found is None:
             continue
-        if best is None or res.fun < best.fun - 1e-12:
-            best = res
+        p_found, _ = pose(found.x)
+        best = found
+        if np.abs(p_found - st.position).max() > LEFT_BASIN * robot.size:
+            break
     if best is None:
         return None, "the constrained minimization of the potential did not converge"
     p, R = pose(best.x)
