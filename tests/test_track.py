@@ -157,3 +157,23 @@ def test_a_start_pose_that_is_not_an_equilibrium_is_refused(robot):
         track(robot, traj, start=(s.position + np.array([0.0, 0.0, -0.01]), s.rotation))
     ok = track(robot, traj, np.linspace(0, 1, 3), start=(s.position, s.rotation))
     assert ok.complete and np.allclose(ok.steps[0].position, s.position, atol=1e-9)
+
+
+def test_expressions_of_t(robot, pay_out_and_back, capsys):
+    """rho_1 = 7.5 + 6.5 sin t over [0, pi]: slack where 7.5 + 6.5 sin t reaches the slack length found on the
+    piecewise-linear trajectory, taut again at pi minus that t."""
+    _, lin = pay_out_and_back
+    rho_slack = lin.events[0].state.lengths[0]
+    assert main(["track", ROBOT, "--expressions", "7.5 + 6.5*sin(t)", "10", "9.5", "--range", "0", "pi",
+                 "--steps", "6", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    (slack, taut) = out["events"]
+    t_expected = np.arcsin((rho_slack - 7.5) / 6.5)
+    assert abs(slack["t"] - t_expected) <= 1e-8 and abs(taut["t"] - (np.pi - t_expected)) <= 1e-8
+    assert out["trajectory"]["expressions"][0] == "6.5*sin(t) + 7.5"
+    assert main(["track", ROBOT, "--expressions", "7.5 + 6.5*sin(s)", "10", "9.5"]) == 2
+    assert "--expressions" in capsys.readouterr().err
+    assert main(["track", ROBOT, "--expressions", "7.5 - 9*t", "10", "9.5"]) == 2
+    assert "cable 1" in capsys.readouterr().err
+    assert main(["track", ROBOT, "--expressions", "7.5", "10", "9.5", "--range", "1", "0"]) == 2
+    assert "--range" in capsys.readouterr().err

@@ -42,12 +42,12 @@ from cdpr_algebra.homotopy.many_targets import ManyTargetSolver
 from .radii import cc_radii_many, polynomials_batch, radii_by_number
 from .configurations import check_pose, configuration_tensions, parse_cables, valid_configurations
 from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.model.expressions import parse_expression, range_bound
 from cdpr_algebra.report.jsonable import jsonable
 
 __all__ = ["PathSpec", "PathRadii", "parse_path", "path_radii", "path_configurations", "crossings"]
 
-_FUNCS = {"sin": sp.sin, "cos": sp.cos, "tan": sp.tan, "sqrt": sp.sqrt, "exp": sp.exp, "log": sp.log,
-          "pi": sp.pi, "E": sp.E, "Abs": sp.Abs, "abs": sp.Abs}
+
 
 
 # ------------------------------------------------------------------------------------------------ parsing
@@ -78,46 +78,6 @@ class PathSpec:
                 "ranges": [list(r) for r in self.ranges], "kinds": list(self.kinds)}
 
 
-def _parse_one(text: str, names, option: str):
-    from sympy.parsing.sympy_parser import parse_expr, standard_transformations
-
-    if not isinstance(text, str) or not text.strip():
-        raise CdprInputError(option, f"empty expression {text!r}")
-    local = {n: sp.Symbol(n, real=True) for n in names}
-    local.update(_FUNCS)
-    try:
-        expr = parse_expr(text.replace("^", "**"), local_dict=local, global_dict={"Integer": sp.Integer,
-                          "Float": sp.Float, "Rational": sp.Rational, "Symbol": sp.Symbol, "Function": sp.Function},
-                          transformations=standard_transformations, evaluate=True)
-    except Exception as exc:  # tokenizer, syntax and evaluation errors alike
-        raise CdprInputError(option, f"cannot parse {text!r} ({type(exc).__name__}: {exc})".replace("\n", " ")) from None
-    if not isinstance(expr, sp.Expr):
-        raise CdprInputError(option, f"{text!r} is not an expression")
-    extra = sorted(str(s) for s in expr.free_symbols if str(s) not in names)
-    if extra:
-        expected = (f"the parameter{'s are' if len(names) > 1 else ' is'} {', '.join(names)}" if names
-                    else "a constant is expected")
-        raise CdprInputError(option, f"unknown symbol {extra[0]!r} in {text!r} ({expected})")
-    if expr.atoms(sp.Function) - expr.atoms(sp.sin, sp.cos, sp.tan, sp.exp, sp.log, sp.Abs):
-        raise CdprInputError(option, f"unknown function in {text!r}")
-    return expr
-
-
-def range_bound(value, option: str = "ranges") -> float:
-    """A range end: a number, or a constant expression in the syntax of the path expressions (``pi/2``, ``2*pi``,
-    ``sqrt(2)``), as a finite float."""
-    if isinstance(value, str):
-        expr = _parse_one(value, (), option)
-        try:
-            value = float(expr.evalf(30))
-        except TypeError:
-            raise CdprInputError(option, f"{value!r} is not a real constant") from None
-    value = float(value)
-    if not np.isfinite(value):
-        raise CdprInputError(option, f"expected a finite number, got {value}")
-    return value
-
-
 def parse_path(expressions, ranges, option: str = "expressions") -> PathSpec:
     """Parse 3 expression strings of t (one range) or of u, v (two ranges) into a :class:`PathSpec`; range ends
     are numbers or constant expressions (:func:`range_bound`)."""
@@ -134,7 +94,7 @@ def parse_path(expressions, ranges, option: str = "expressions") -> PathSpec:
         if not lo < hi:
             raise CdprInputError("ranges", f"expected LO < HI, got {list(r)} = [{lo:g}, {hi:g}]")
         rng.append((lo, hi))
-    exprs = [_parse_one(e, names, option) for e in expressions]
+    exprs = [parse_expression(e, names, option) for e in expressions]
     params = tuple(sp.Symbol(n, real=True) for n in names)
     kinds = []
     for p in params:

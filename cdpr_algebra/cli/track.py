@@ -2,10 +2,12 @@
 
     cdpr track ROBOT [--lengths L1 .. Ln] --to L1 .. Ln [--steps N] [--json] [--plot FILE]
     cdpr track ROBOT --trajectory FILE [--steps N] [--json] [--plot FILE]
+    cdpr track ROBOT --expressions E1 .. En [--range T0 T1] [--steps N] [--json] [--plot FILE]
 
 From the robot's stable equilibrium of lowest potential at the start lengths (``--lengths``, default the robot
-file's), the lengths move straight to ``--to`` (t from 0 to 1), or along the table of ``--trajectory`` (CSV rows
-``t, rho_1 .. rho_n`` or JSON ``{"t": [..], "lengths": [[..], ..]}``).  States are reported at ``--steps`` + 1
+file's), the lengths move straight to ``--to`` (t from 0 to 1), along the table of ``--trajectory`` (CSV rows
+``t, rho_1 .. rho_n`` or JSON ``{"t": [..], "lengths": [[..], ..]}``), or as ``--expressions`` of t over ``--range``
+(the syntax of ``cdpr cc --path``: sin, cos, pi, ...).  States are reported at ``--steps`` + 1
 evenly spaced t (default 10 steps) and at every event (slack, taut, fold, jump, singular) between them.  A table
 for people, or ``--json``: ``{"steps": [...], "events": [...], "status", ...}``; ``--plot`` saves tensions and the
 lowest reduced-Hessian eigenvalue against t with the events marked.
@@ -33,6 +35,10 @@ def add_parser(subparsers) -> None:
                    help="start lengths rho_1 .. rho_n (default: the robot file's)")
     p.add_argument("--to", nargs="+", type=finite("--to"), metavar="L", help="end lengths rho_1 .. rho_n")
     p.add_argument("--trajectory", metavar="FILE", help="a table of lengths against t (CSV or JSON)")
+    p.add_argument("--expressions", nargs="+", metavar="EXPR",
+                   help="the lengths as expressions of t, one per cable (e.g. '7.5 + 2*sin(pi*t)')")
+    p.add_argument("--range", nargs=2, default=["0", "1"], metavar=("T0", "T1"),
+                   help="the range of t for --expressions (numbers or constants like pi/2; default 0 1)")
     p.add_argument("--steps", type=int, default=10, metavar="N", help="report states at N + 1 evenly spaced t")
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
     p.add_argument("--plot", metavar="FILE", help="save a picture of tensions and stability against t")
@@ -46,9 +52,18 @@ def run(args) -> int:
     robot = load_robot(args.robot)
     if args.steps < 1:
         raise CdprInputError("--steps", f"expected a positive number of steps, got {args.steps}")
-    if (args.to is None) == (args.trajectory is None):
-        raise CdprInputError("--to", "give either --to L1 .. Ln or --trajectory FILE")
-    if args.trajectory is not None:
+    given = [f for f, v in (("--to", args.to), ("--trajectory", args.trajectory), ("--expressions", args.expressions))
+             if v is not None]
+    if len(given) != 1:
+        raise CdprInputError(given[1] if len(given) > 1 else "--to",
+                             "give one of --to L1 .. Ln, --trajectory FILE or --expressions E1 .. En")
+    if args.expressions is not None:
+        from cdpr_algebra.track.trajectory import from_expressions
+
+        if args.lengths is not None:
+            raise CdprInputError("--lengths", "the expressions give the start lengths")
+        traj = from_expressions(args.expressions, args.range, robot.n)
+    elif args.trajectory is not None:
         if args.lengths is not None:
             raise CdprInputError("--lengths", "the trajectory file gives the start lengths")
         traj = load_trajectory(args.trajectory, robot.n)

@@ -127,3 +127,51 @@ def load_trajectory(path, n: int) -> LengthTrajectory:
         raise CdprInputError("--trajectory", "no rows")
     arr = np.array(rows, dtype=float)
     return _check(arr[:, 0], arr[:, 1:], n, field)
+
+
+@dataclass(frozen=True)
+class ExpressionTrajectory:
+    """rho(t) given by one expression of t per cable (``sin``, ``cos``, ``pi``, ... as in ``cdpr cc --path``),
+    t in [start, end]; smooth, so no breakpoints."""
+
+    expressions: tuple
+    start: float
+    end: float
+
+    def __post_init__(self):
+        import sympy as sp
+
+        t = sp.Symbol("t", real=True)
+        object.__setattr__(self, "_f", [sp.lambdify(t, e, "numpy") for e in self.expressions])
+
+    def __call__(self, t: float) -> np.ndarray:
+        t = min(max(float(t), self.start), self.end)
+        return np.array([float(f(t)) for f in self._f])
+
+    def breakpoints(self, t0: float, t1: float) -> list:
+        return []
+
+    def to_dict(self) -> dict:
+        return {"expressions": [str(e) for e in self.expressions], "range": [self.start, self.end]}
+
+
+def from_expressions(texts, t_range, n: int, option: str = "--expressions") -> ExpressionTrajectory:
+    """A trajectory from n expression strings of t over ``t_range`` (ends: numbers or constants like ``pi/2``);
+    the lengths must be finite and > 0 over the range (checked on 1001 points)."""
+    from cdpr_algebra.model.expressions import parse_expression, range_bound
+
+    if len(texts) != n:
+        raise CdprInputError(option, f"expected {n} expressions (one per cable), got {len(texts)}")
+    if len(t_range) != 2:
+        raise CdprInputError("--range", f"expected two ends T0 T1, got {list(t_range)}")
+    a, b = range_bound(t_range[0], "--range"), range_bound(t_range[1], "--range")
+    if not a < b:
+        raise CdprInputError("--range", f"expected T0 < T1, got [{a:g}, {b:g}]")
+    traj = ExpressionTrajectory(tuple(parse_expression(s, ("t",), option) for s in texts), a, b)
+    for t in np.linspace(a, b, 1001):
+        v = traj(t)
+        bad = np.flatnonzero(~np.isfinite(v) | (v <= 0))
+        if bad.size:
+            raise CdprInputError(option, f"cable {bad[0] + 1}'s length {texts[bad[0]]!r} is {v[bad[0]]:.6g} at "
+                                 f"t = {t:.6g} (lengths must be > 0)")
+    return traj
