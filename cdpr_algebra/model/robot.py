@@ -114,6 +114,9 @@ class Robot:
         object.__setattr__(self, "load", load)
         object.__setattr__(self, "load_direction", d)
         object.__setattr__(self, "lengths", lengths)
+        pts = np.vstack([base, platform - com])  # the robot's length scale, computed once (hot in tracking loops)
+        object.__setattr__(self, "_size", float(max(np.ptp(pts, axis=0).max(),
+                                                    np.linalg.norm(platform - com, axis=1).max(), 1e-300)))
 
     @property
     def n(self) -> int:
@@ -122,9 +125,9 @@ class Robot:
 
     @property
     def size(self) -> float:
-        """A length scale of the robot (largest distance between base points or platform points, >= 1e-300)."""
-        pts = np.vstack([self.base, self.platform - self.com])
-        return float(max(np.ptp(pts, axis=0).max(), np.linalg.norm(self.platform - self.com, axis=1).max(), 1e-300))
+        """A length scale of the robot: the largest coordinate extent of the base points together with the platform
+        points relative to G, or the largest |b'_i - g'| if larger (>= 1e-300)."""
+        return self._size
 
     def with_lengths(self, lengths) -> "Robot":
         return Robot(self.base, self.platform, self.com, self.load, self.load_direction, lengths, self.name)
