@@ -17,13 +17,14 @@ import numpy as np
 
 from cdpr_algebra.dgp.solve import fast_family
 from cdpr_algebra.model.pose import angles_from_matrix
-from cdpr_algebra.model.stability import hessian_class, reduced_hessian
-from cdpr_algebra.model.taut_equations import decode, encode, taut_parameters
+from cdpr_algebra.model.stability import constraint_jacobian, hessian_class, reduced_hessian
+from cdpr_algebra.model.taut_equations import encode, taut_parameters
 from cdpr_algebra.report.jsonable import jsonable
 
 NEWTON_TOL = 1e-13  # relative size of the last Newton update
 NEWTON_ITERS = 12
 RESIDUAL_TOL = 1e-15  # max |F| over the size of the terms: the rounding level
+FULL_RANK_DET = 1e-12  # |det| of the 6 x 6 constraint Jacobian (unit rows) above this: six independent cables
 
 
 @dataclass(frozen=True)
@@ -42,6 +43,8 @@ class TrackState:
     min_eigenvalue: float
     residual: float
     x: np.ndarray = field(repr=False, compare=False, default=None)  # the unknowns of the taut set's equations
+    events: dict = field(repr=False, compare=False, default=None)  # event_values at this state (set by state())
+    parameters: np.ndarray = field(repr=False, compare=False, default=None)  # of the taut set's equations (complex)
 
     @property
     def stable(self) -> bool:
@@ -71,7 +74,7 @@ def unknowns(position, rotation, lam) -> np.ndarray:
     return encode(np.asarray(position, dtype=float), np.asarray(rotation, dtype=float), np.asarray(lam, dtype=float))
 
 
-def _residual_scale(robot) -> float:
+def residual_scale(robot) -> float:
     return robot.load * (1 + robot.size) + robot.size ** 2 + 1.0
 
 
@@ -83,7 +86,7 @@ def newton(robot, cables, rho, x0, tol: float = NEWTON_TOL, iters: int = NEWTON_
     fam = fast_family(len(cables))
     p = parameters(robot, cables, rho).astype(complex)
     x = np.array(x0, dtype=float)
-    scale = _residual_scale(robot)
+    scale = residual_scale(robot)
     prev = np.inf
     for k in range(iters):
         F, J = fam.evaluate_and_jacobian(x.astype(complex), p)
@@ -124,23 +127,28 @@ def tangent(robot, cables, rho0, rho1, x):
 def state(robot, cables, rho, x, t: float, residual: float) -> TrackState:
     """The equilibrium of the taut set ``cables`` (0-based) described by x, with its stability."""
     m = len(cables)
-    p, R, lam = decode(x, m)
-    p, R, lam = p[0], R[0], lam[0]
+    x = np.asarray(x, dtype=float)
+    p, R, lam = x[0:3].copy(), x[3:12].reshape(3, 3).T.copy(), x[12:12 + m]  # columns u, v, w (taut_equations.decode)
     idx = list(cables)
     tau = np.zeros(robot.n)
     tau[idx] = lam * rho[idx]
     B = p + robot.platform[idx] @ R.T
     G = p + R @ robot.com
-    Hr = reduced_hessian(robot.base[idx], B, G, tau[idx], rho[idx], length_scale=robot.size)
     scale = float(np.sum(np.abs(tau[idx]) / rho[idx]) + robot.load / robot.size)
+    if m == 6 and abs(np.linalg.det(constraint_jacobian(robot.base[idx], B, G, rho[idx]))) > FULL_RANK_DET:
+        Hr = np.zeros((0, 0))  # six independent taut cables: the platform cannot move, H_r is empty
+    else:
+        Hr = reduced_hessian(robot.base[idx], B, G, tau[idx], rho[idx], length_scale=robot.size)
     if Hr.shape[-1]:
         ev = np.linalg.eigvalsh(0.5 * (Hr + Hr.T))
         lo = float(ev[0] / scale)
     else:
         lo = np.inf
-    return TrackState(t=float(t), lengths=np.array(rho, dtype=float), position=p, rotation=R, tensions=tau,
-                      taut=tuple(c + 1 for c in sorted(cables)), hessian=hessian_class(Hr, scale),
-                      min_eigenvalue=lo, residual=float(residual), x=np.array(x, dtype=float))
+    st = TrackState(t=float(t), lengths=np.array(rho, dtype=float), position=p, rotation=R, tensions=tau,
+                    taut=tuple(c + 1 for c in sorted(cables)), hessian=hessian_class(Hr, scale) if Hr.size else ">",
+                    min_eigenvalue=lo, residual=float(residual), x=np.array(x, dtype=float))
+    object.__setattr__(st, "events", event_values(robot, st))
+    return st
 
 
 def slack_margins(robot, st: TrackState) -> np.ndarray:
@@ -152,13 +160,18 @@ def slack_margins(robot, st: TrackState) -> np.ndarray:
 def event_values(robot, st: TrackState) -> dict:
     """The event functions at a state (module doc): {("slack", i): tau_i / Q, ("taut", j): margin_j / size,
     ("fold", None): lowest scaled eigenvalue}; each is > 0 on the side of the current branch."""
-    out = {}
-    for i in st.cables:
-        out[("slack", i)] = float(st.tensions[i] / robot.load)
-    margins = slack_margins(robot, st)
-    for j in range(robot.n):
-        if j not in st.cables:
-            out[("taut", j)] = float(margins[j] / robot.size)
+    if st.events is not None:
+        return st.events
+    cables = st.cables
+    Q = robot.load
+    out = {("slack", i): float(st.tensions[i]) / Q for i in cables}
+    slack = [j for j in range(robot.n) if j not in cables]
+    if slack:
+        B = st.position + robot.platform[slack] @ st.rotation.T
+        margins = st.lengths[slack] - np.linalg.norm(robot.base[slack] - B, axis=1)
+        L = robot.size
+        for j, v in zip(slack, margins):
+            out[("taut", j)] = float(v) / L
     out[("fold", None)] = st.min_eigenvalue
     return out
 

@@ -141,20 +141,23 @@ class _Stop(Exception):
 
 
 def _step(robot, traj, st, t1):
-    """One predictor-corrector step of the branch of ``st`` to t1: (state, newton iterations) or None."""
+    """One predictor-corrector step of the branch of ``st`` to t1 (compiled: :func:`.kernel.predict_correct`):
+    (state, newton iterations) or None."""
+    from .kernel import predict_correct
+
     rho0, rho1 = st.lengths, traj(t1)
-    dx = branch.tangent(robot, st.cables, rho0, rho1, st.x)
-    if dx is None:
-        return None
-    xp = st.x + dx
-    x, ok, resid, its = branch.newton(robot, st.cables, rho1, xp)
-    if not ok or its > 6:
-        return None
+    p0 = st.parameters if st.parameters is not None else branch.parameters(robot, st.cables, rho0).astype(complex)
+    p1 = branch.parameters(robot, st.cables, rho1).astype(complex)
+    x = np.empty(len(st.x), dtype=complex)
+    status, its, ratio, resid = predict_correct(st.x.astype(complex), p0, p1, branch.NEWTON_TOL, branch.RESIDUAL_TOL,
+                                                branch.residual_scale(robot), 6, x)
     # the corrector must stay near the prediction: a large correction means the step is too long for the
     # branch's curvature (and could land on another branch)
-    if np.abs(x - xp).max() > 0.1 * np.abs(dx).max() + 1e-9 * (1 + np.abs(x).max()):
+    if status != 1 or ratio > 0.1:
         return None
-    return branch.state(robot, st.cables, rho1, x, t1, resid), its
+    nxt = branch.state(robot, st.cables, rho1, x.real, t1, resid)
+    object.__setattr__(nxt, "parameters", p1)  # the next step's start parameters
+    return nxt, its
 
 
 def _crossed(robot, before, after):

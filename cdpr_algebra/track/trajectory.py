@@ -7,6 +7,7 @@ From two length vectors (t = 0 -> 1), or from a table read from a CSV or JSON fi
 
 from __future__ import annotations
 
+import bisect
 import json
 from dataclasses import dataclass
 from pathlib import Path
@@ -32,9 +33,10 @@ class LengthTrajectory:
         return float(self.knots[-1])
 
     def __call__(self, t: float) -> np.ndarray:
-        t = min(max(float(t), self.start), self.end)
-        k = int(np.clip(np.searchsorted(self.knots, t, side="right") - 1, 0, len(self.knots) - 2))
-        a, b = self.knots[k], self.knots[k + 1]
+        knots = self.knots
+        t = min(max(float(t), float(knots[0])), float(knots[-1]))
+        k = min(max(bisect.bisect_right(knots, t) - 1, 0), len(knots) - 2)
+        a, b = float(knots[k]), float(knots[k + 1])
         s = (t - a) / (b - a)
         return (1 - s) * self.lengths[k] + s * self.lengths[k + 1]
 
