@@ -177,3 +177,15 @@ def test_expressions_of_t(robot, pay_out_and_back, capsys):
     assert "cable 1" in capsys.readouterr().err
     assert main(["track", ROBOT, "--expressions", "7.5", "10", "9.5", "--range", "1", "0"]) == 2
     assert "--range" in capsys.readouterr().err
+
+
+def test_animation_has_a_frame_per_state(tmp_path, capsys):
+    from PIL import Image
+
+    gif = tmp_path / "a.gif"
+    assert main(["track", ROBOT, "--to", "14", "10", "9.5", "--steps", "4", "--animate", str(gif), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    with Image.open(gif) as im:
+        assert im.n_frames == len(out["steps"]) + len(out["events"])  # 5 samples and the slack event
+    assert main(["track", ROBOT, "--to", "14", "10", "9.5", "--steps", "2", "--animate", str(tmp_path / "a.avi")]) == 2
+    assert "--animate" in capsys.readouterr().err

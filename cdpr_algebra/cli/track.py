@@ -1,6 +1,6 @@
 """``cdpr track``: follow the robot's equilibrium while its cables move (:mod:`cdpr_algebra.track.follow`).
 
-    cdpr track ROBOT [--lengths L1 .. Ln] --to L1 .. Ln [--steps N] [--json] [--plot FILE]
+    cdpr track ROBOT [--lengths L1 .. Ln] --to L1 .. Ln [--steps N] [--json] [--plot FILE] [--animate FILE]
     cdpr track ROBOT --trajectory FILE [--steps N] [--json] [--plot FILE]
     cdpr track ROBOT --expressions E1 .. En [--range T0 T1] [--steps N] [--json] [--plot FILE]
 
@@ -10,7 +10,8 @@ file's), the lengths move straight to ``--to`` (t from 0 to 1), along the table 
 (the syntax of ``cdpr cc --path``: sin, cos, pi, ...).  States are reported at ``--steps`` + 1
 evenly spaced t (default 10 steps) and at every event (slack, taut, fold, jump, singular) between them.  A table
 for people, or ``--json``: ``{"steps": [...], "events": [...], "status", ...}``; ``--plot`` saves tensions and the
-lowest reduced-Hessian eigenvalue against t with the events marked.
+lowest reduced-Hessian eigenvalue against t with the events marked; ``--animate`` an animation of the robot (GIF;
+MP4 when ffmpeg is installed) with slack cables dashed.
 
 Exit status: 0 when the whole trajectory was followed; 3 when tracking stopped (the reason on stderr: a branch
 that ends at a singular wrench matrix, a fold with no landing found, ...); 2 on bad input.
@@ -42,6 +43,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("--steps", type=int, default=10, metavar="N", help="report states at N + 1 evenly spaced t")
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
     p.add_argument("--plot", metavar="FILE", help="save a picture of tensions and stability against t")
+    p.add_argument("--animate", metavar="FILE", help="save an animation of the robot (.gif, or .mp4 with ffmpeg)")
 
 
 def run(args) -> int:
@@ -71,6 +73,8 @@ def run(args) -> int:
         if any(v <= 0 for v in args.to):
             raise CdprInputError("--to", "cable lengths must be > 0")
         traj = straight(dgp_lengths(args, robot), np.array(args.to), robot.n)
+    if args.animate and not args.animate.lower().endswith((".gif", ".mp4")):
+        raise CdprInputError("--animate", f"expected a .gif or .mp4 file name, got {args.animate!r}")
     samples = np.linspace(traj.start, traj.end, args.steps + 1)
     res = track(robot, traj, samples)
     if args.json:
@@ -81,6 +85,10 @@ def run(args) -> int:
         from cdpr_algebra.track.pictures import save_tracking_figure
 
         save_tracking_figure(res, robot, args.plot)
+    if args.animate:
+        from cdpr_algebra.track.pictures import save_tracking_animation
+
+        save_tracking_animation(res, robot, args.animate)
     if not res.complete:
         print(f"cdpr: tracking stopped (exit status {INCOMPLETE}): {res.reason}", file=sys.stderr)
         return INCOMPLETE

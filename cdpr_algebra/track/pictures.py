@@ -48,3 +48,52 @@ def save_tracking_figure(res, robot, path) -> None:
     import matplotlib.pyplot as plt
 
     plt.close(fig)
+
+
+def save_tracking_animation(res, robot, path, fps: int = 4) -> int:
+    """An animation of the tracked robot, one frame per reported state (samples, events and landings, in order of
+    t), saved as GIF (matplotlib's PillowWriter) or MP4 (FFMpegWriter, when ffmpeg is installed); taut cables solid
+    and coloured by tension, slack ones dashed grey (:func:`cdpr_algebra.report.plot.draw_configuration`).  Returns
+    the number of frames."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib import animation
+
+    from cdpr_algebra.model.errors import CdprInputError
+    from cdpr_algebra.report.plot import draw_configuration, set_equal_axes
+
+    frames = sorted([(s.t, "", s) for s in res.steps] + [(e.t, e.kind, e.state) for e in res.events]
+                    + [(e.t, "landing", e.landing) for e in res.events if e.landing is not None], key=lambda v: v[0])
+    suffix = str(path).lower().rsplit(".", 1)[-1]
+    if suffix == "gif":
+        writer = animation.PillowWriter(fps=fps)
+    elif suffix == "mp4":
+        if not animation.FFMpegWriter.isAvailable():
+            raise CdprInputError("--animate", "MP4 needs ffmpeg, which is not installed: save a .gif")
+        writer = animation.FFMpegWriter(fps=fps)
+    else:
+        raise CdprInputError("--animate", f"expected a .gif or .mp4 file name, got {path!r}")
+    points = []
+    for _, _, s in frames:
+        B = s.position + robot.platform @ s.rotation.T
+        points.append(np.vstack([robot.base, B, s.position + s.rotation @ robot.com]))
+    points = np.vstack(points)
+    fig = plt.figure(figsize=(6, 5))
+    ax = fig.add_subplot(projection="3d")
+    invert = robot.load_direction[2] > 0  # z down (gravity along +z): draw it pointing down
+
+    def draw(k):
+        ax.cla()
+        t, kind, s = frames[k]
+        draw_configuration(ax, robot, s.position, s.rotation, s.tensions, s.taut)
+        set_equal_axes(ax, points, invert_z=invert)
+        label = f"t = {t:.4g}" + (f"  ({kind})" if kind else "") + f"  taut {list(s.taut)}"
+        ax.set_title(label, fontsize=9)
+        return []
+
+    anim = animation.FuncAnimation(fig, draw, frames=len(frames), blit=False)
+    anim.save(str(path), writer=writer)
+    plt.close(fig)
+    return len(frames)
