@@ -189,3 +189,26 @@ def test_animation_has_a_frame_per_state(tmp_path, capsys):
         assert im.n_frames == len(out["steps"]) + len(out["events"])  # 5 samples and the slack event
     assert main(["track", ROBOT, "--to", "14", "10", "9.5", "--steps", "2", "--animate", str(tmp_path / "a.avi")]) == 2
     assert "--animate" in capsys.readouterr().err
+
+
+def test_cli_start_pose(robot, capsys):
+    """Start from a pose given to the DGP table's 4 decimals (polished by Newton), or refuse one that is not near
+    an equilibrium, or an unstable one, naming --start-position."""
+    sols = dgp(robot, robot.lengths, certify=False).solutions
+    stable = [s for s in sols if s.stable][0]
+    unstable = [s for s in sols if not s.stable][0]
+    from cdpr_algebra.model.pose import angles_from_matrix
+
+    def args(s, dz=0.0):
+        p = np.round(s.position, 4) + [0, 0, dz]
+        a = np.round(angles_from_matrix(s.rotation), 6)
+        return ["--start-position", *map(str, p), "--start-angles", *map(str, a)]
+
+    assert main(["track", ROBOT, "--to", "8", "10", "9.5", "--steps", "1", "--json"] + args(stable)) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert np.allclose(out["steps"][0]["position"], stable.position, atol=1e-9)
+    assert main(["track", ROBOT, "--to", "8", "10", "9.5"] + args(stable, dz=0.05)) == 2
+    err = capsys.readouterr().err
+    assert "--start-position" in err and len(err.strip().splitlines()) == 1
+    assert main(["track", ROBOT, "--to", "8", "10", "9.5"] + args(unstable)) == 2
+    assert "not stable" in capsys.readouterr().err

@@ -26,7 +26,7 @@ import numpy as np
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import INCOMPLETE, dgp_lengths, finite
+from .common import INCOMPLETE, as_flags, dgp_lengths, finite
 
 
 def add_parser(subparsers) -> None:
@@ -41,6 +41,13 @@ def add_parser(subparsers) -> None:
     p.add_argument("--range", nargs=2, default=["0", "1"], metavar=("T0", "T1"),
                    help="the range of t for --expressions (numbers or constants like pi/2; default 0 1)")
     p.add_argument("--steps", type=int, default=10, metavar="N", help="report states at N + 1 evenly spaced t")
+    p.add_argument("--start-position", nargs=3, type=finite("--start-position"), metavar=("X", "Y", "Z"),
+                   help="start from the equilibrium at this pose (the platform frame's origin, as the DGP prints it; "
+                        "within 1e-4 of the robot's size: it is polished); default: the DGP's stable equilibrium of "
+                        "lowest potential")
+    p.add_argument("--start-angles", nargs=3, type=finite("--start-angles"), metavar=("PHI_X", "PHI_Y", "PHI_Z"),
+                   help="orientation of the start pose, R = Rz Ry Rx, radians unless --degrees (default 0 0 0)")
+    p.add_argument("--degrees", action="store_true", help="--start-angles in degrees")
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
     p.add_argument("--plot", metavar="FILE", help="save a picture of tensions and stability against t")
     p.add_argument("--animate", metavar="FILE", help="save an animation of the robot (.gif, or .mp4 with ffmpeg)")
@@ -76,7 +83,16 @@ def run(args) -> int:
     if args.animate and not args.animate.lower().endswith((".gif", ".mp4")):
         raise CdprInputError("--animate", f"expected a .gif or .mp4 file name, got {args.animate!r}")
     samples = np.linspace(traj.start, traj.end, args.steps + 1)
-    res = track(robot, traj, samples)
+    start = None
+    if args.start_angles is not None and args.start_position is None:
+        raise CdprInputError("--start-angles", "give --start-position with it")
+    if args.start_position is not None:
+        from cdpr_algebra.model.pose import matrix_from_angles
+
+        angles = np.zeros(3) if args.start_angles is None else np.array(args.start_angles)
+        start = (np.array(args.start_position), matrix_from_angles(*(np.radians(angles) if args.degrees else angles)))
+    with as_flags({"start": "--start-position"}):
+        res = track(robot, traj, samples, start=start)
     if args.json:
         print(json.dumps(res.to_dict()))
     else:

@@ -39,6 +39,7 @@ MIN_STEP = 1e-12  # steps in t below this: the branch cannot be continued (it tu
 WRENCH_RANK_TOL = 1e-8  # sigma_min / sigma_max of the unit wrenches below this: singular
 ADMISSIBLE_TOL = 1e-8  # tensions and slack margins down to -this (x load, x size) at a located event are rounding
 LANDING_DTS = (1e-6, 1e-5, 1e-4, 1e-3)  # a jump's landing is sought at t_fold + these x the trajectory's span
+START_TOL = 1e-4  # a start pose must be within this (x size; rotation entries) of an equilibrium
 JUMP_MIN = 1e-2  # a landing within this (x size) of the fold pose on the same taut set is the old minimum
 KINDS = ("slack", "taut", "fold", "jump", "singular")
 
@@ -95,28 +96,38 @@ class TrackResult:
 
 
 def _start_state(robot, rho, t0, start):
-    """The starting equilibrium: ``start`` (a TrackState, or a (position, rotation) pose checked to be an
-    equilibrium) or the DGP's unique / lowest-potential stable equilibrium at rho."""
+    """The starting equilibrium: ``start`` (a TrackState, or a (position, rotation) pose within START_TOL of a
+    stable equilibrium, which Newton polishes) or the DGP's unique / lowest-potential stable equilibrium at rho."""
     if start is not None and not isinstance(start, branch.TrackState):
-        position, rotation = (np.asarray(v, dtype=float) for v in start)
+        from cdpr_algebra.model.pose import check_rotation
+
+        from .jump import statics_lam
+
+        position = np.asarray(start[0], dtype=float)
+        if position.shape != (3,) or not np.all(np.isfinite(position)):
+            raise CdprInputError("start position", "expected 3 finite numbers")
+        rotation = check_rotation(start[1], "start rotation", tol=START_TOL)
+        tol = START_TOL * robot.size
         B = position + robot.platform @ rotation.T
         margin = rho - np.linalg.norm(robot.base - B, axis=1)
-        if np.any(margin < -1e-9 * robot.size):
+        if np.any(margin < -tol):
             bad = int(np.argmin(margin))
-            raise CdprInputError("start", f"cable {bad + 1} would be longer than its length at that pose")
-        cables = tuple(int(i) for i in np.flatnonzero(margin <= 1e-9 * robot.size))
-        from .jump import _statics_lam
-
+            raise CdprInputError("start", f"cable {bad + 1} would have to stretch by {-margin[bad]:.6g} at that pose")
+        cables = tuple(int(i) for i in np.flatnonzero(margin <= tol))
         if not 2 <= len(cables) <= 6:
             raise CdprInputError("start", f"the pose has {len(cables)} taut cables (2 to 6 can be tracked)")
-        lam, res = _statics_lam(robot, cables, position, rotation)
-        if res > 1e-8 or np.any(lam < -1e-12):
-            raise CdprInputError("start", "the pose is not an equilibrium of its taut cables with tensions >= 0 "
-                                 f"(force and moment residual {res:.3g} of the load)")
+        lam, _ = statics_lam(robot, cables, position, rotation)
         x, ok, resid, _ = branch.newton(robot, cables, rho, branch.unknowns(position, rotation, lam))
-        if not ok:
-            raise CdprInputError("start", "Newton does not converge from that pose")
-        return branch.state(robot, cables, rho, x, t0, resid)
+        st = branch.state(robot, cables, rho, x, t0, resid) if ok else None
+        if st is None or np.abs(st.position - position).max() > tol or np.abs(st.rotation - rotation).max() > START_TOL:
+            raise CdprInputError("start", f"the pose is not within {START_TOL:g} (relative) of an equilibrium of its "
+                                 f"taut cables {[c + 1 for c in cables]}")
+        if np.any(st.tensions < -ADMISSIBLE_TOL * robot.load):
+            raise CdprInputError("start", f"the equilibrium there has a negative tension ({st.tensions.round(6)})")
+        if not st.stable:
+            raise CdprInputError("start", f"the equilibrium there is not stable (H_r class {st.hessian}): the robot "
+                                 "would not stay there")
+        return st
     if isinstance(start, branch.TrackState):
         return start
     from cdpr_algebra.dgp.solve import dgp

@@ -37,7 +37,7 @@ def _softest_mode(robot, st):
     return d[:3], d[3:]
 
 
-def _statics_lam(robot, cables, p, R):
+def statics_lam(robot, cables, p, R):
     """lam (tau / rho) of the taut cables from the force and moment balance (least squares) and its residual."""
     idx = list(cables)
     B = p + robot.platform[idx] @ R.T
@@ -112,7 +112,7 @@ def land(robot, st, rho, t):
         return None, f"lands hanging from {len(cables)} cable(s): its turning about the cable is free (not tracked)"
     if len(cables) > 6:
         return None, f"lands with {len(cables)} taut cables (more than 6: redundantly constrained, not tracked)"
-    lam, res = _statics_lam(robot, cables, p, R)
+    lam, res = statics_lam(robot, cables, p, R)
     x, ok, resid, _ = branch.newton(robot, cables, rho, branch.unknowns(p, R, lam))
     if not ok:
         return None, "Newton did not converge on the landing's taut set"
