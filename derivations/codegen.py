@@ -44,6 +44,20 @@ def function_source(name: str, args: list[sp.Symbol], outputs: list[sp.Expr], do
     return "\n".join(lines) + "\n"
 
 
+def function_into_source(name: str, args: list[sp.Symbol], outputs: list[sp.Expr], doc: str) -> str:
+    """Source of ``def name(*args, out): ...`` writing output k into ``out[k]`` (common subexpressions shared): the
+    form numba compiles into a loop over points without building a tuple per point."""
+    for e in outputs:
+        _check_integral(sp.sympify(e))
+    subs, reduced = sp.cse([sp.sympify(e) for e in outputs], symbols=sp.numbered_symbols("t"), order="none")
+    lines = [f"def {name}({', '.join(str(a) for a in args)}, out):", f'    """{doc}"""']
+    for sym, val in subs:
+        lines.append(f"    {sym} = {_pow_to_mul(val)}")
+    for k, e in enumerate(reduced):
+        lines.append(f"    out[{k}] = {_pow_to_mul(e)}")
+    return "\n".join(lines) + "\n"
+
+
 def write(files: dict[str, str], root) -> None:
     from pathlib import Path
 

@@ -20,6 +20,7 @@ This script writes, from those expressions only (sympy, common subexpressions sh
         ed_system(y0..y3, mu, lam, c0..c19, a0..a3, b0, b1) -> 6 equations, then dF/dz row by row (36)
         ed_directional(y0..y3, mu, lam, c0..c19, a0..a3, b0, b1, d0..d19)
                                                             -> the same 42 outputs, then dF/dc . d (6)
+        ed_directional_into(..., d0..d19, out)               the same 48 values written into out[0..47]
         lagrange_system(y1, y2, y3, lam, c0..c19)           -> 4 equations, then dF/d(y, lam) row by row (16)
         CRITICAL_SET_ROWS                 (16, 20, 20) integers: row p, monomial m, coefficient j
 
@@ -40,7 +41,7 @@ import sympy as sp
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "derivations"))
 
-from codegen import HEADER, function_source, write  # noqa: E402
+from codegen import HEADER, function_into_source, function_source, write  # noqa: E402
 
 TARGET = "cdpr_algebra/generated/cubic_distance.py"
 MONOMIALS = tuple((i, j, k) for i in range(4) for j in range(4) for k in range(4) if i + j + k <= 3)
@@ -121,6 +122,9 @@ def generate() -> dict:
         "ed_directional", z + list(c) + list(a) + list(b) + list(d), ed + _jacobian_rows(ed, z) + direction,
         "ed_system's 6 equations and 36 Jacobian entries, then dF/dc . d (6; F is linear in c), sharing their "
         "common subexpressions.")
+    into_src = function_into_source(
+        "ed_directional_into", z + list(c) + list(a) + list(b) + list(d), ed + _jacobian_rows(ed, z) + direction,
+        "The 48 outputs of ed_directional written into out[0..47] (for the compiled loop over points).")
     y = list(Y[1:])
     lg = lagrange_equations(y, lam, c)
     lg_src = function_source(
@@ -130,7 +134,7 @@ def generate() -> dict:
     rows = critical_set_rows(y, c)
     text = (HEADER.format(script="derive_cubic_distance.py")
             + '"""Distance-to-a-cubic systems of the robustness radii (see derivations/derive_cubic_distance.py)."""\n\n'
-            + f"MONOMIALS = {MONOMIALS!r}\n\n\n" + ed_src + "\n\n" + dir_src + "\n\n" + lg_src + "\n\n"
+            + f"MONOMIALS = {MONOMIALS!r}\n\n\n" + ed_src + "\n\n" + dir_src + "\n\n" + into_src + "\n\n" + lg_src + "\n\n"
             + "# (16, 20, 20): polynomial p of the critical set, monomial m, cubic coefficient j\n"
             + f"CRITICAL_SET_ROWS = {rows!r}\n")
     return {TARGET: text}

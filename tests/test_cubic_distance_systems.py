@@ -124,3 +124,20 @@ def test_a_path_heading_for_a_node_is_accounted_for_by_the_node():
     assert res.failed == 0
     k = [i for i, kind in enumerate(res.kinds) if kind == "singular point"]
     assert len(k) == 1 and np.allclose(res.points[k[0]], node, atol=1e-8)
+
+
+def test_compiled_batch_equals_the_generated_function():
+    from cdpr_algebra.cc.ed_kernels import ed_values
+
+    N = 7
+    Z = RNG.normal(size=(N, 6)) + 1j * RNG.normal(size=(N, 6))
+    C = RNG.normal(size=(N, 20)) + 1j * RNG.normal(size=(N, 20))
+    D = RNG.normal(size=(N, 20))
+    a, b = RNG.normal(size=4) + 0j, RNG.normal(size=2) + 0j
+    got = ed_values(Z, C, a, b, D)
+    for k in range(N):
+        ref = np.array(ed_directional(*Z[k], *C[k], *a, *b, *D[k]), dtype=complex)
+        assert np.allclose(got[k], ref, rtol=1e-13, atol=1e-13 * np.abs(ref).max())
+    # one shared cubic, no direction
+    got1 = ed_values(Z, C[0], a, b)
+    assert np.allclose(got1[:, :42], np.array([ed_system(*Z[k], *C[0], *a, *b) for k in range(N)], dtype=complex))

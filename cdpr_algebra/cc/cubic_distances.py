@@ -9,7 +9,7 @@ import time
 from dataclasses import dataclass, replace
 import numpy as np
 
-from cdpr_algebra.generated.cubic_distance import MONOMIALS, ed_directional, ed_system, lagrange_system
+from cdpr_algebra.generated.cubic_distance import MONOMIALS, lagrange_system
 from cdpr_algebra.homotopy.endgame import track_paths
 from cdpr_algebra.homotopy.many_targets import chart_options, solve_targets
 from cdpr_algebra.homotopy.results import FAILURES, SINGULAR, SUCCESS
@@ -21,30 +21,20 @@ _VINV = np.linalg.inv(np.vander(_NODES, 4, increasing=True))
 _GRID = np.stack(np.meshgrid(_NODES, _NODES, _NODES, indexing="ij"), -1).reshape(-1, 3)
 
 
-def columns(values, n: int, dtype=complex) -> np.ndarray:
-    """(n, len(values)) array from the outputs of a generated function (arrays of n entries, or constants)."""
-    out = np.empty((n, len(values)), dtype=dtype)
-    for i, v in enumerate(values):
-        out[:, i] = v
-    return out
-
-
 def _ed_parts(Z, C, a, b, jac=True, dC=None):
-    """The generated projective ED system (:func:`cdpr_algebra.generated.cubic_distance.ed_system`) at the chart
-    points Z (N, 6) for the cubics C: (N, 20) rows, or one coefficient vector shared by all.  Returns [F (N, 6)],
-    plus J (N, 6, 6) with ``jac``, plus dF/dc . dC (N, 6) for a direction dC (N, 20) (then J is returned too)."""
+    """The generated projective ED system (:func:`cdpr_algebra.generated.cubic_distance.ed_directional_into`,
+    compiled over the points by :mod:`.ed_kernels`) at the chart points Z (N, 6) for the cubics C: (N, 20) rows, or
+    one coefficient vector shared by all.  Returns [F (N, 6)], plus J (N, 6, 6) with ``jac``, plus dF/dc . dC
+    (N, 6) for a direction dC (N, 20) (then J is returned too)."""
+    from .ed_kernels import ed_values
+
     N = len(Z)
-    z = np.asfortranarray(Z).T  # contiguous columns
-    c = np.asfortranarray(C).T if np.ndim(C) == 2 else C
-    if dC is None:
-        vals = ed_system(*z, *c, *a, *b)
-    else:
-        vals = ed_directional(*z, *c, *a, *b, *np.asfortranarray(dC).T)
-    out = [columns(vals[:6], N)]
+    vals = ed_values(Z, C, a, b, dC)
+    out = [vals[:, :6]]
     if jac or dC is not None:
-        out.append(columns(vals[6:42], N).reshape(N, 6, 6))
+        out.append(vals[:, 6:42].reshape(N, 6, 6))
     if dC is not None:
-        out.append(columns(vals[42:], N))
+        out.append(vals[:, 42:])
     return out
 
 
