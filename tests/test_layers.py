@@ -11,7 +11,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "cdpr_algebra"
 
 # rank of each part: a part imports only parts of lower rank, plus the sibling edges below
 RANK = {"homotopy": 0, "intervals": 0, "generated": 0, "model": 1, "report": 2, "certificates": 3,
-        "igp": 4, "dgp": 4, "bp": 4, "cc": 4, "track": 4, "comparison": 5, "cli": 6, "": 7}
+        "igp": 4, "dgp": 4, "bp": 4, "cc": 4, "track": 4, "sweep": 5, "comparison": 5, "cli": 6, "": 7}
 # the safety of sub-configurations solves the DGP of the sub-robot; tracking starts from the DGP's stable equilibrium
 # and follows the branches of its equations
 SIBLINGS = {("cc", "dgp"), ("track", "dgp")}

@@ -9,6 +9,8 @@
     cdpr crosscheck ROBOT [--lengths L1 .. Ln] [--taut C1 .. Cm] [--json]                 (crosscheck.py)
     cdpr track ROBOT [--lengths L1 .. Ln] (--to L1 .. Ln | --trajectory FILE) [--steps N] [--json] [--plot F]
                                                                                           (track.py)
+    cdpr sweep ROBOT --vary NAME=START:STOP:NUM .. --out DIR [--kind ..] [--workers N] [--scheduler A] (sweep.py)
+    cdpr plot-sweep DIR [--value NAME] [--out FILE.png]                                   (plot_sweep.py)
 
 Exit status: 0 on success, 2 on bad input (one line on stderr naming the field and the problem), 3 when the
 result is incomplete (``dgp``: some subproblem has failed paths or regular endpoints without a Krawczyk
@@ -25,11 +27,11 @@ from cdpr_algebra.model.errors import CdprInputError
 
 from .common import INCOMPLETE, Parser  # noqa: F401  (INCOMPLETE: the documented exit status)
 
-COMMANDS = ("igp", "dgp", "plot", "cc", "crosscheck", "track")  # each a module of this package with add_parser and run
+COMMANDS = ("igp", "dgp", "plot", "cc", "crosscheck", "track", "sweep", "plot-sweep")  # each a module of this package with add_parser and run
 
 
 def _command(name):
-    return importlib.import_module(f"{__package__}.{name}")
+    return importlib.import_module(f"{__package__}.{name.replace('-', '_')}")
 
 
 def build_parser() -> argparse.ArgumentParser:
