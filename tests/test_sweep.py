@@ -165,3 +165,17 @@ def test_sweep_on_a_scheduler_started_by_the_dask_commands(tmp_path, capsys):
             p.terminate()
         for p in procs:
             p.wait(timeout=30)
+
+
+def test_cc_sweep_point_is_the_published_table():
+    """Merlet's CC paper, 8-cable robot at (0, 1, 2): 4 valid 6-cable configurations; the largest r_min is CC
+    [2..7]'s 0.760099942309 (the README erratum)."""
+    r8 = load_robot("examples/seed002_8cables.toml")
+    g = make_grid(r8, ["x=0:0:1", "y=1:1:1", "z=2:2:1"])
+    assert g.kind == "cc"
+    points, eqs = tasks.solve_batch(r8, "cc", g.names, list(g.points()), certify=True)
+    (p,) = points
+    assert p["error"] is None and p["n_admissible"] == 4 and p["complete"]
+    assert abs(p["rmin"] - 0.760099942309) < 1e-11
+    assert sorted(e["taut"] for e in eqs) == ["1,2,3,4,5,6", "1,3,4,5,6,8", "2,3,4,5,6,7", "3,4,5,6,7,8"]
+    assert all(e["certified"] for e in eqs)
