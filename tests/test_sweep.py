@@ -179,3 +179,25 @@ def test_cc_sweep_point_is_the_published_table():
     assert abs(p["rmin"] - 0.760099942309) < 1e-11
     assert sorted(e["taut"] for e in eqs) == ["1,2,3,4,5,6", "1,3,4,5,6,8", "2,3,4,5,6,7", "3,4,5,6,7,8"]
     assert all(e["certified"] for e in eqs)
+
+
+def test_workspace_picture_of_a_pose_sweep(tmp_path):
+    """plot-sweep of an x, y, z grid draws the workspace (written here without a cluster: the task's rows)."""
+    import matplotlib
+
+    from cdpr_algebra.sweep.pictures import sweep_figure
+    from cdpr_algebra.sweep.run import _check_same_sweep, _robot_dict, _write
+
+    r3 = load_robot("examples/seed004_table3.toml")
+    g = make_grid(r3, ["x=6:8:2", "y=8:9:2", "z=1:2:2"])
+    out = tmp_path / "w"
+    _check_same_sweep(out, {"robot": _robot_dict(r3), "grid": g.to_dict(), "certify": False, "version": 1})
+    points, eqs = tasks.solve_batch(r3, "igp", g.names, list(g.points()), certify=False)
+    _write(out, "equilibria", eqs)
+    _write(out, "points", points)
+    fig = sweep_figure(out, "n_admissible")
+    ax = fig.axes[0]
+    assert ax.name == "3d" and len(ax.collections[0].get_offsets()) == 8
+    matplotlib.pyplot.close(fig)
+    with pytest.raises(CdprInputError, match="--value"):
+        sweep_figure(out, "nope")

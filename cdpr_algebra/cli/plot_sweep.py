@@ -2,7 +2,8 @@
 
     cdpr plot-sweep DIR [--value n_stable|n_admissible|min_tension|rmin] [--out FILE.png]
 
-One varied name: the value against it; two: a heat map.  Points with an error or incomplete are marked.
+One varied name: the value against it; two: a heat map; x, y, z of a pose sweep: the workspace (the points in space,
+coloured by the value).  Points with an error or incomplete are marked.
 """
 
 from __future__ import annotations

@@ -1,5 +1,6 @@
 """Pictures of a sweep: a value per grid point (``n_stable``, ``n_admissible``, ``min_tension``, ``rmin``) against
-one varied name (a line) or two (a heat map); points with an error or incomplete are marked."""
+one varied name (a line), two (a heat map), or x, y, z of a pose sweep (the workspace: the grid's points in space
+coloured by the value); points with an error or incomplete are marked."""
 
 from __future__ import annotations
 
@@ -62,8 +63,25 @@ def sweep_figure(out, value: str = "n_stable"):
             ax.legend()
         ax.set_xlabel(n1)
         ax.set_ylabel(n0)
+    elif len(axes) == 3 and {a["name"] for a in axes} == {"x", "y", "z"}:
+        # a workspace picture: the points of the pose grid in space, coloured by the value (failed ones marked)
+        plt.close(fig)
+        fig = plt.figure(figsize=(6.5, 5))
+        ax = fig.add_subplot(projection="3d")
+        X = np.array([[r["x"], r["y"], r["z"]] for r in rows])
+        V = np.array([np.nan if r[value] is None else r[value] for r in rows], dtype=float)
+        sc = ax.scatter(*X.T, c=V, cmap="viridis", s=18, depthshade=False)
+        fig.colorbar(sc, ax=ax, label=value, shrink=0.7)
+        if bad:
+            ax.scatter(*np.array([[r["x"], r["y"], r["z"]] for r in bad]).T, marker="x", color="red", s=30,
+                       label="error / incomplete")
+            ax.legend()
+        ax.set_xlabel("x")
+        ax.set_ylabel("y")
+        ax.set_zlabel("z")
     else:
-        raise CdprInputError("DIR", f"pictures are drawn for 1 or 2 varied names, this sweep has {len(axes)}")
+        raise CdprInputError("DIR", f"pictures are drawn for 1 or 2 varied names, or x, y, z (a workspace); this "
+                             f"sweep varies {[a['name'] for a in axes]}")
     ax.set_title(f"{header['robot']['name']}: {value} ({header['grid']['kind']} sweep, {len(rows)} points)")
     fig.tight_layout()
     return fig
