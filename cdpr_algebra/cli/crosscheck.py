@@ -1,6 +1,11 @@
 """``cdpr crosscheck``: homotopy DGP against the interval branch and prune, subproblem by subproblem (issue 8).
 
     cdpr crosscheck ROBOT [--lengths L1 .. Ln] [--taut C1 .. Cm] [--max-m M] [--json]
+    cdpr crosscheck ROBOT [--lengths L1 .. Ln] --against FILE [--json]
+
+With ``--against``: another solver's results (JSON ``{"solver", "subproblems": [{"taut", "count", "boxes"}]}`` or
+text lines ``1 2 3 ; [lo, hi] [lo, hi] [lo, hi]``, :mod:`cdpr_algebra.comparison.external`) against our certified
+DGP, taut set by taut set; exit status 1 when some subproblem disagrees, 3 when some could not be compared.
 
 Without ``--taut``: every set of m = 1 .. min(n, 6, M) taut cables; with it, that one set (cable numbers from 1).
 Prints a table (one row per subproblem: both admissible counts, the interval solver's undecided boxes, agree /
@@ -33,6 +38,8 @@ def add_parser(subparsers) -> None:
                    help="cable lengths rho_1 .. rho_n (default: the robot file's)")
     p.add_argument("--taut", nargs="+", type=int, metavar="C", help="only this set of taut cables (numbers from 1)")
     p.add_argument("--max-m", type=int, default=6, metavar="M", help="largest number of taut cables (default 6)")
+    p.add_argument("--against", metavar="FILE", help="another solver's results (JSON or text boxes, see "
+                                                     "cdpr_algebra.comparison.external) instead of our interval solver")
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
@@ -64,6 +71,9 @@ def run(args) -> int:
     if args.max_m < 1:
         raise CdprInputError("--max-m", f"expected a number >= 1, got {args.max_m}")
 
+    if args.against is not None:
+        return _against(args, robot, lengths)
+
     def progress(c, done, total):
         h = "-" if c.homotopy is None else c.homotopy
         what = {True: "agree", False: "DISAGREE", None: c.compared}[c.agree]
@@ -81,4 +91,29 @@ def run(args) -> int:
     if code == 3:
         print(f"cdpr crosscheck: incomplete: {len(result.not_compared)} subproblem(s) not compared: "
               + ", ".join(str(list(c.taut)) for c in result.not_compared), file=sys.stderr)
+    return code
+
+
+def _against(args, robot, lengths) -> int:
+    from cdpr_algebra.comparison.external import crosscheck_against, external_exit_status, external_table
+
+    if args.taut is not None:
+        raise CdprInputError("--taut", "with --against, the taut sets are those of the results file")
+
+    def progress(c, done, total):
+        what = {True: "agree", False: "DISAGREE", None: "not compared"}[c.agree]
+        print(f"[{done}/{total}] taut {list(c.taut)}: theirs {c.theirs}, ours {c.ours}, {what}", file=sys.stderr,
+              flush=True)
+
+    result = crosscheck_against(robot, lengths, args.against, progress=progress)
+    if args.json:
+        print(json.dumps(result.to_dict(), indent=2))
+    else:
+        print(f"{robot.name}: {result.solver} against cdpr_algebra, lengths {', '.join(f'{v:g}' for v in lengths)}")
+        print(external_table(result))
+    code = external_exit_status(result)
+    if code:
+        print(f"cdpr crosscheck: {len(result.disagreements)} subproblem(s) disagree, {len(result.not_compared)} not "
+              "compared: " + ", ".join(str(list(c.taut)) for c in result.disagreements + result.not_compared),
+              file=sys.stderr)
     return code
