@@ -145,8 +145,8 @@ def test_sweep_on_a_scheduler_started_by_the_dask_commands(tmp_path, capsys):
     import sys
 
     sched_file = tmp_path / "scheduler.json"
-    dask = [sys.executable, "-m", "distributed.cli.dask_scheduler"]
-    worker = [sys.executable, "-m", "distributed.cli.dask_worker"]
+    dask = [sys.executable, "-m", "dask", "scheduler"]  # the `dask scheduler` / `dask worker` commands
+    worker = [sys.executable, "-m", "dask", "worker"]
     procs = [subprocess.Popen(dask + ["--scheduler-file", str(sched_file), "--port", "0", "--dashboard-address",
                                       ":0"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)]
     try:
