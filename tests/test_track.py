@@ -107,6 +107,7 @@ def test_cli_json_and_exit_status(capsys, tmp_path):
     assert main(["track", ROBOT, "--to", "14", "10", "9.5", "--steps", "4", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["status"] == "complete" and len(out["steps"]) == 5
+    assert out["start"]["dgp_complete"] is True and out["start"]["stable_found"] == 1  # Test 1: one stable
     assert [e["kind"] for e in out["events"]] == ["slack"] and out["events"][0]["cables"] == [1]
     st = out["steps"][-1]
     assert st["taut"] == [2, 3] and st["tensions"][0] == 0 and st["stable"] is True

@@ -14,7 +14,9 @@ lowest reduced-Hessian eigenvalue against t with the events marked; ``--animate`
 MP4 when ffmpeg is installed) with slack cables dashed.
 
 Exit status: 0 when the whole trajectory was followed; 3 when tracking stopped (the reason on stderr: a branch
-that ends at a singular wrench matrix, a fold with no landing found, ...); 2 on bad input.
+that ends at a singular wrench matrix, a fold with no landing found, ...) or when the default start is not proven
+(the DGP at the start lengths is incomplete, so a stable equilibrium of lower potential may be missing); 2 on bad
+input.
 """
 
 from __future__ import annotations
@@ -105,7 +107,12 @@ def run(args) -> int:
         from cdpr_algebra.track.pictures import save_tracking_animation
 
         save_tracking_animation(res, robot, args.animate)
+    code = 0
+    if res.start.get("dgp_complete") is False:
+        print(f"cdpr: undecided start (exit status {INCOMPLETE}): {res.start['note']}; give --start-position to "
+              "choose it", file=sys.stderr)
+        code = INCOMPLETE
     if not res.complete:
         print(f"cdpr: tracking stopped (exit status {INCOMPLETE}): {res.reason}", file=sys.stderr)
-        return INCOMPLETE
-    return 0
+        code = INCOMPLETE
+    return code

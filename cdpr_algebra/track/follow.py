@@ -83,6 +83,7 @@ class TrackResult:
     seconds: float
     newton_steps: int = 0
     options: dict = field(default_factory=dict)
+    start: dict = field(default_factory=dict)  # how the starting equilibrium was chosen (start_equilibrium)
 
     @property
     def complete(self) -> bool:
@@ -92,11 +93,15 @@ class TrackResult:
         return {"status": self.status, "reason": self.reason, "samples": jsonable(self.samples),
                 "steps": [s.to_dict() for s in self.steps], "events": [e.to_dict() for e in self.events],
                 "trajectory": self.trajectory.to_dict(), "seconds": self.seconds, "newton_steps": self.newton_steps,
-                "options": self.options}
+                "options": self.options, "start": self.start}
 
 
 def _start_state(robot, rho, t0, start):
-    """The starting equilibrium: ``start`` (a TrackState, or a (position, rotation) pose within START_TOL of a
+    return start_equilibrium(robot, rho, t0, start)[0]
+
+
+def start_equilibrium(robot, rho, t0, start):
+    """(state, how it was chosen: {"method", "dgp_complete", "stable_found"}).  The starting equilibrium: ``start`` (a TrackState, or a (position, rotation) pose within START_TOL of a
     stable equilibrium, which Newton polishes) or the DGP's unique / lowest-potential stable equilibrium at rho."""
     if start is not None and not isinstance(start, branch.TrackState):
         from cdpr_algebra.model.pose import check_rotation
@@ -127,9 +132,9 @@ def _start_state(robot, rho, t0, start):
         if not st.stable:
             raise CdprInputError("start", f"the equilibrium there is not stable (H_r class {st.hessian}): the robot "
                                  "would not stay there")
-        return st
+        return st, {"method": "given pose", "dgp_complete": None, "stable_found": None}
     if isinstance(start, branch.TrackState):
-        return start
+        return start, {"method": "given state", "dgp_complete": None, "stable_found": None}
     from cdpr_algebra.dgp.solve import dgp
 
     res = dgp(robot, rho, certify=False)
@@ -142,7 +147,12 @@ def _start_state(robot, rho, t0, start):
     cables = tuple(c - 1 for c in s.taut)
     lam = s.tensions[list(cables)] / rho[list(cables)]
     x, ok, resid, _ = branch.newton(robot, cables, rho, branch.unknowns(s.position, s.rotation, lam))
-    return branch.state(robot, cables, rho, x, t0, resid)
+    info = {"method": "the DGP's stable equilibrium of lowest potential", "dgp_complete": bool(res.complete),
+            "stable_found": len(stable)}
+    if not res.complete:
+        info["note"] = (f"the DGP at the start lengths is incomplete ({len(res.incomplete)} subproblem(s)): a stable "
+                        "equilibrium of lower potential may be missing, so the start is not proven")
+    return branch.state(robot, cables, rho, x, t0, resid), info
 
 
 class _Stop(Exception):
@@ -236,7 +246,7 @@ def track(robot, traj: LengthTrajectory, samples=None, start=None, max_events: i
         raise CdprInputError("samples", "sample times must increase")
     if samples[0] < traj.start - 1e-12 or samples[-1] > traj.end + 1e-12:
         raise CdprInputError("samples", f"sample times must lie in [{traj.start:g}, {traj.end:g}]")
-    st = _start_state(robot, traj(samples[0]), float(samples[0]), start)
+    st, start_info = start_equilibrium(robot, traj(samples[0]), float(samples[0]), start)
     steps, events = [st], []
     counter = [0]
     reason = None
@@ -259,7 +269,7 @@ def track(robot, traj: LengthTrajectory, samples=None, start=None, max_events: i
         status, reason = "stopped", stop.reason
     return TrackResult(steps=tuple(steps), events=tuple(events), status=status, reason=reason, trajectory=traj,
                        samples=samples, seconds=time.perf_counter() - t0, newton_steps=counter[0],
-                       options={"event_tol": EVENT_TOL, "max_length_step": MAX_LENGTH_STEP})
+                       options={"event_tol": EVENT_TOL, "max_length_step": MAX_LENGTH_STEP}, start=start_info)
 
 
 def _handle(robot, traj, cur, t_cross, keys, k, events):
