@@ -1,7 +1,11 @@
 """Wall time of the complete DGP (every set of taut cables) on seed 000 Test 1 (target <= 1 s) and, when the
 generic sets for m = 4 .. 6 are stored, Test 3 (63 subproblems, target <= 10 s on 2 cores).
 
-    python -m benchmarks.bench_dgp [--repeat 3] [--jobs N] [--no-test3] [--test2] [--phc] [--phc-test3] [--phc-timeout S]
+    python -m benchmarks.bench_dgp [--repeat 3] [--jobs N] [--no-test3] [--test2] [--profile] [--phc] [--phc-test3]
+                                   [--phc-timeout S]
+
+``--profile`` adds, per test, one serial run under cProfile: its top lines by own time, the slowest subproblems and
+the path counters (issue 19: every change shows where the time went).
 
 ``--phc`` also solves the homotopy subproblems (m >= 2) of Test 1 with PHCpack's blackbox (``phc -b``, Debian
 package ``phcpack``) in the same run, on the same normalized equations (:func:`cdpr_algebra.model.taut_equations.taut_family`
@@ -93,6 +97,42 @@ def phc_compare(path, cable_sets, repeat, timeout):
                   f"{res['regular']} regular, {res['real']} real; {zero} of them with a zero tension)", flush=True)
 
 
+def profile_run(path, top: int = 12):
+    """One serial run of every subproblem under cProfile (the threads of ``dgp`` hide from it): the profile's top
+    lines by own time, the five slowest subproblems and the path counters, so a change shows where time went."""
+    import cProfile
+    import io
+    import pstats
+
+    from cdpr_algebra.dgp.solve import solve_taut_set
+    from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
+
+    robot = load_robot(path)
+    rho, sets = lengths_and_taut_sets(robot)
+    solve_taut_set(robot, rho, sets[-1])  # compile / load outside the profile
+    prof = cProfile.Profile()
+    t0 = time.perf_counter()
+    prof.enable()
+    subs = [solve_taut_set(robot, rho, c)[0] for c in sets]
+    prof.disable()
+    wall = time.perf_counter() - t0
+    buf = io.StringIO()
+    pstats.Stats(prof, stream=buf).sort_stats("tottime").print_stats(top)
+    lines = [ln for ln in buf.getvalue().splitlines() if ln.strip()]
+    start = next(i for i, ln in enumerate(lines) if ln.lstrip().startswith("ncalls"))
+    print(f"{robot.name}: profile of one serial run ({wall:.2f} s under the profiler), top {top} by own time:")
+    for ln in lines[start:start + top + 1]:
+        print("   " + ln[:150])
+    slow = sorted(subs, key=lambda s: -s.seconds)[:5]
+    print("  slowest subproblems: " + "; ".join(f"{list(s.taut)} {s.seconds:.2f} s ({s.paths} paths, "
+                                                  f"{s.outcomes.get('failed', 0)} failed)" for s in slow))
+    paths = sum(s.paths for s in subs)
+    failed = sum(s.outcomes.get("failed", 0) for s in subs)
+    print(f"  counters: {len(subs)} subproblems, {paths} paths, {failed} failed, "
+          f"{sum(s.outcomes.get('singular', 0) for s in subs)} singular, "
+          f"{sum(s.outcomes.get('at_infinity', 0) for s in subs)} at infinity", flush=True)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=3)
@@ -102,16 +142,24 @@ def main(argv=None):
     ap.add_argument("--phc", action="store_true", help="also PHCpack's blackbox on Test 1's homotopy subproblems")
     ap.add_argument("--phc-test3", action="store_true", help="also PHCpack on one subproblem per m of Test 3")
     ap.add_argument("--phc-timeout", type=float, default=1800.0)
+    ap.add_argument("--profile", action="store_true", help="also one serial run of each test under cProfile: the "
+                                                          "top lines, the slowest subproblems, path counters")
     args = ap.parse_args(argv)
     print(machine())
     print(f"stored generic sets: m = {available_m()}")
     bench(ROOT / "examples" / "seed000_test1.toml", args.repeat, args.jobs)
+    if args.profile:
+        profile_run(ROOT / "examples" / "seed000_test1.toml")
     if args.test2:
         bench(ROOT / "examples" / "seed000_test2.toml", args.repeat, args.jobs)
+        if args.profile:
+            profile_run(ROOT / "examples" / "seed000_test2.toml")
     if args.no_test3:
         print("Test 3: not run (--no-test3)")
     elif {4, 5, 6} <= set(available_m()):
         bench(ROOT / "examples" / "seed000_test3.toml", args.repeat, args.jobs)
+        if args.profile:
+            profile_run(ROOT / "examples" / "seed000_test3.toml")
     else:
         print("Test 3: skipped (generic sets for m = 4, 5, 6 not all stored)")
     if args.phc:
