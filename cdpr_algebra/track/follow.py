@@ -34,6 +34,7 @@ from .jump import land
 from .trajectory import LengthTrajectory
 
 EVENT_TOL = 1e-10  # events located to this in t
+EVENT_EPS = 1e-9  # event functions (tension / load, margin / size) within this of 0 count as 0
 MAX_LENGTH_STEP = 0.02  # largest change of a cable length per step, relative to the robot's size
 MIN_STEP = 1e-12  # steps in t below this: the branch cannot be continued (it turns back: a fold)
 WRENCH_RANK_TOL = 1e-8  # sigma_min / sigma_max of the unit wrenches below this: singular
@@ -182,9 +183,17 @@ def _step(robot, traj, st, t1):
 
 
 def _crossed(robot, before, after):
-    """Event keys whose function changed sign from > 0 to <= 0 between two states of one branch."""
+    """Event keys whose function changed sign from > 0 to <= 0 between two states of one branch; a function that
+    starts at 0 within EVENT_EPS (the cable that just became taut or slack at an event) counts once it passes
+    -EVENT_EPS, so a cable that only grazes its length or zero tension is not followed into an inadmissible state."""
     a, b = branch.event_values(robot, before), branch.event_values(robot, after)
-    return [k for k in a if a[k] > 0 and k in b and b[k] <= 0]
+    out = []
+    for k, va in a.items():
+        if k not in b:
+            continue
+        if (va > 0 and b[k] <= 0) or (-EVENT_EPS < va <= 0 and b[k] < -EVENT_EPS):
+            out.append(k)
+    return out
 
 
 def _locate(robot, traj, st, t1, key):
