@@ -24,7 +24,7 @@ sys.path[:0] = [str(ROOT / "benchmarks"), str(ROOT)]
 import numpy as np  # noqa: E402
 
 from cdpr_algebra.model.robot import load_robot  # noqa: E402
-from cdpr_algebra.track import branch, follow  # noqa: E402
+from cdpr_algebra.track import follow  # noqa: E402
 from cdpr_algebra.track.trajectory import LengthTrajectory  # noqa: E402
 from timing import machine, run_times, spread  # noqa: E402
 
@@ -51,6 +51,16 @@ def updates(robot, n_updates: int):
     return per, st
 
 
+def update_medians(robot, n_updates: int, repeat: int):
+    """The median time of one update in each of ``repeat`` runs (after a warm-up run for the compiled kernels)."""
+    updates(robot, 10)
+    meds = []
+    for _ in range(repeat):
+        per, st = updates(robot, n_updates)
+        meds.append(statistics.median(per))
+    return meds, st
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--updates", type=int, default=200)
@@ -58,19 +68,11 @@ def main():
     a = ap.parse_args()
     print(machine())
     robot = load_robot(ROOT / "examples" / "seed000_test3.toml")
-    per, st = updates(robot, 10)  # warm-up (compiled kernels)
-    meds = []
-    for _ in range(a.repeat):
-        per, st = updates(robot, a.updates)
-        meds.append(statistics.median(per))
+    meds, st = update_medians(robot, a.updates, a.repeat)
     print(f"Test 3 (MARIONET-VR), taut set {list(st.taut)}: one update (predictor, Newton, stability, events): "
           f"{spread(meds, 'us', 1e6)} of the per-update medians over {a.updates} updates; goal <= 50 us")
     r1 = load_robot(ROOT / "examples" / "seed000_test1.toml")
-    updates(r1, 10)
-    meds1 = []
-    for _ in range(a.repeat):
-        per1, st1 = updates(r1, a.updates)
-        meds1.append(statistics.median(per1))
+    meds1, st1 = update_medians(r1, a.updates, a.repeat)
     print(f"Test 1 (3 cables), taut set {list(st1.taut)}: one update, the reduced Hessian's eigenvalues included: "
           f"{spread(meds1, 'us', 1e6)}")
     rho0 = r1.lengths.copy()

@@ -17,10 +17,8 @@ This script writes, from those expressions only (sympy, common subexpressions sh
 
     cdpr_algebra/generated/cubic_distance.py
         MONOMIALS                         the exponents (i, j, k), the coefficient order
-        ed_system(y0..y3, mu, lam, c0..c19, a0..a3, b0, b1) -> 6 equations, then dF/dz row by row (36)
-        ed_directional(y0..y3, mu, lam, c0..c19, a0..a3, b0, b1, d0..d19)
-                                                            -> the same 42 outputs, then dF/dc . d (6)
-        ed_directional_into(..., d0..d19, out)               the same 48 values written into out[0..47]
+        ed_directional_into(y0..y3, mu, lam, c0..c19, a0..a3, b0, b1, d0..d19, out)
+                                  out[0..47] <- the 6 equations, dF/dz row by row (36), dF/dc . d (6)
         lagrange_system(y1, y2, y3, lam, c0..c19)           -> 4 equations, then dF/d(y, lam) row by row (16)
         CRITICAL_SET_ROWS                 (16, 20, 20) integers: row p, monomial m, coefficient j
 
@@ -113,18 +111,11 @@ def generate() -> dict:
     Y, mu, lam, c, d, a, b = _symbols()
     z = list(Y) + [mu, lam]
     ed = ed_equations(Y, mu, lam, c, a, b)
-    ed_src = function_source(
-        "ed_system", z + list(c) + list(a) + list(b), ed + _jacobian_rows(ed, z),
-        "Projective Euclidean-distance system of the cubic c (module doc): 6 equations, then the 36 entries of "
-        "dF/dz row by row.")
     direction = [sp.expand(sum(sp.diff(e, cj) * dj for cj, dj in zip(c, d))) for e in ed]
-    dir_src = function_source(
-        "ed_directional", z + list(c) + list(a) + list(b) + list(d), ed + _jacobian_rows(ed, z) + direction,
-        "ed_system's 6 equations and 36 Jacobian entries, then dF/dc . d (6; F is linear in c), sharing their "
-        "common subexpressions.")
     into_src = function_into_source(
         "ed_directional_into", z + list(c) + list(a) + list(b) + list(d), ed + _jacobian_rows(ed, z) + direction,
-        "The 48 outputs of ed_directional written into out[0..47] (for the compiled loop over points).")
+        "Projective Euclidean-distance system of the cubic c (module doc) into out[0..47]: 6 equations, the 36 "
+        "entries of dF/dz row by row, then dF/dc . d (6; F is linear in c).")
     y = list(Y[1:])
     lg = lagrange_equations(y, lam, c)
     lg_src = function_source(
@@ -134,7 +125,7 @@ def generate() -> dict:
     rows = critical_set_rows(y, c)
     text = (HEADER.format(script="derive_cubic_distance.py")
             + '"""Distance-to-a-cubic systems of the robustness radii (see derivations/derive_cubic_distance.py)."""\n\n'
-            + f"MONOMIALS = {MONOMIALS!r}\n\n\n" + ed_src + "\n\n" + dir_src + "\n\n" + into_src + "\n\n" + lg_src + "\n\n"
+            + f"MONOMIALS = {MONOMIALS!r}\n\n\n" + into_src + "\n\n" + lg_src + "\n\n"
             + "# (16, 20, 20): polynomial p of the critical set, monomial m, cubic coefficient j\n"
             + f"CRITICAL_SET_ROWS = {rows!r}\n")
     return {TARGET: text}

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import itertools
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 import numpy as np
 
 from cdpr_algebra.generated.cubic_distance import MONOMIALS, lagrange_system
@@ -172,9 +172,9 @@ def _generic(seed: int = 0) -> _Generic:
         c1 = rng.normal(size=20) + 1j * rng.normal(size=20)
         start = _LinearProductStart(system, rng)
         gamma = np.exp(2j * np.pi * rng.random())
-        options = chart_options()  # only the regular endpoints are kept: no Cauchy endgame for the others
-        options = replace(options, endgame=replace(options.endgame, cauchy=False))
-        tr = track_paths(_StartHomotopy(start, system, c1, gamma), start.solutions, options, seed=seed)
+        # only the regular endpoints are kept: no Cauchy endgame for the others
+        tr = track_paths(_StartHomotopy(start, system, c1, gamma), start.solutions, chart_options(cauchy=False),
+                         seed=seed)
         X = np.array([p.endpoint for p in tr.paths if p.status == SUCCESS]).reshape(-1, 6)
         if len(X):
             X = X[np.abs(X[:, 4]) > 1e-6]  # mu = 0: a singular point of the cubic, not a critical point

@@ -95,7 +95,8 @@ def run(args) -> int:
 
 
 def _against(args, robot, lengths) -> int:
-    from cdpr_algebra.comparison.external import crosscheck_against, external_exit_status, external_table
+    from cdpr_algebra.comparison.compare import exit_status
+    from cdpr_algebra.comparison.external import crosscheck_against, external_table
 
     if args.taut is not None:
         raise CdprInputError("--taut", "with --against, the taut sets are those of the results file")
@@ -111,7 +112,7 @@ def _against(args, robot, lengths) -> int:
     else:
         print(f"{robot.name}: {result.solver} against cdpr_algebra, lengths {', '.join(f'{v:g}' for v in lengths)}")
         print(external_table(result))
-    code = external_exit_status(result)
+    code = exit_status(result)  # the same rule: 1 on a disagreement, 3 when something was not compared
     if code:
         print(f"cdpr crosscheck: {len(result.disagreements)} subproblem(s) disagree, {len(result.not_compared)} not "
               "compared: " + ", ".join(str(list(c.taut)) for c in result.disagreements + result.not_compared),

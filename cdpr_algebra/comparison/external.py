@@ -89,13 +89,6 @@ class ExternalResult:
                             "disagree": len(self.disagreements), "not_compared": len(self.not_compared)}}
 
 
-def external_exit_status(result: ExternalResult) -> int:
-    """1 when some subproblem disagrees, 3 when none does but some was not compared, else 0."""
-    if result.disagreements:
-        return 1
-    return 3 if result.not_compared else 0
-
-
 def _taut(value, n: int, where: str) -> tuple:
     try:
         taut = tuple(int(c) for c in value)

@@ -42,13 +42,15 @@ LABEL_SCALE = 1024  # path label k is stored as k / LABEL_SCALE (targets per bat
 SETTLED_UPDATE = 1e-9  # a last Newton update below this (relative) ends a chart path regular (see chart_options)
 
 
-def chart_options(predictor_tol: float = 1e-5) -> SolveOptions:
+def chart_options(predictor_tol: float = 1e-5, cauchy: bool = True) -> SolveOptions:
     """Options for homotopies tracked in a projective chart: a path whose last Newton update at t = 0 is below
     SETTLED_UPDATE with a moderate condition number is regular (``EndgameOptions.settled_update``: the 1e-13 floor
     of the refinement is too strict for chart points with large coordinates); double-precision retries of failed
-    and coinciding paths (no arbitrary precision: the batched evaluators have none)."""
+    and coinciding paths (no arbitrary precision: the batched evaluators have none); ``cauchy=False`` for generic
+    solves that keep only regular endpoints (``EndgameOptions.cauchy``)."""
     return SolveOptions(tracker=TrackerOptions(predictor_tol=predictor_tol),
-                        endgame=EndgameOptions(settled_update=SETTLED_UPDATE), retry_tight=True, retry_mpmath=False)
+                        endgame=EndgameOptions(settled_update=SETTLED_UPDATE, cauchy=cauchy), retry_tight=True,
+                        retry_mpmath=False)
 
 
 class ChartTotalDegreeStart:
@@ -202,9 +204,7 @@ class ManyTargetSolver:
         p1 = rng.normal(size=self.system.m) + 1j * rng.normal(size=self.system.m)
         gamma = np.exp(2j * np.pi * rng.random())
         hom = ChartTotalDegreeStart(self.Fh, self.system.degrees, p1, gamma)
-        options = chart_options()
-        options = replace(options, endgame=replace(options.endgame, cauchy=False))
-        tr = track_paths(hom, hom.start_solutions(self.chart), options, seed=self.seed)
+        tr = track_paths(hom, hom.start_solutions(self.chart), chart_options(cauchy=False), seed=self.seed)
         sols = group_solutions(tr)
         S = np.array([s.x for s in sols if not s.singular]).reshape(-1, self.Fh.n)
         self._generic = (p1, S, sum(tr.count(f) for f in FAILURES))

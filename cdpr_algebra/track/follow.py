@@ -309,21 +309,13 @@ def _handle(robot, traj, cur, t_cross, keys, k, events):
         events.append(TrackEvent(k, lo.t, "slack", (cable + 1,), lo))
         if len(cables) < 2:
             raise _Stop(_singular(events, k, lo, "one taut cable left: the platform may turn about it (not tracked)"))
-        lam = lo.tensions[list(cables)] / lo.lengths[list(cables)]
-        x, ok, resid, _ = branch.newton(robot, cables, lo.lengths, branch.unknowns(lo.position, lo.rotation, lam))
-        if not ok:
-            raise _Stop(_singular(events, k, lo, "Newton does not converge after the cable went slack"))
-        return _checked(robot, events, k, branch.state(robot, cables, lo.lengths, x, lo.t, resid))
+        return _new_taut_set(robot, events, k, lo, cables, "went slack")
     if kind == "taut":
         cables = tuple(sorted(lo.cables + (cable,)))
         if len(cables) > 6:
             raise _Stop(_singular(events, k, lo, "a seventh cable becomes taut (redundantly constrained, not tracked)"))
         events.append(TrackEvent(k, lo.t, "taut", (cable + 1,), lo))
-        lam = lo.tensions[list(cables)] / lo.lengths[list(cables)]
-        x, ok, resid, _ = branch.newton(robot, cables, lo.lengths, branch.unknowns(lo.position, lo.rotation, lam))
-        if not ok:
-            raise _Stop(_singular(events, k, lo, "Newton does not converge after the cable became taut"))
-        return _checked(robot, events, k, branch.state(robot, cables, lo.lengths, x, lo.t, resid))
+        return _new_taut_set(robot, events, k, lo, cables, "became taut")
     # fold: the equilibrium stops being stable; the robot jumps
     # the landing at lengths just past the fold, where the old minimum of the potential has gone: the fold is
     # located to where the steps underflow, so the first tries may still find the old minimum (not a jump)
@@ -353,6 +345,16 @@ def _handle(robot, traj, cur, t_cross, keys, k, events):
     events.append(TrackEvent(k, lo.t, "jump", landing.taut, lo, landing=landing,
                              energy_released=lo.potential(robot) - landing.potential(robot)))
     return landing
+
+
+def _new_taut_set(robot, events, k, lo, cables, what):
+    """The equilibrium of the taut set ``cables`` at the event state ``lo`` (Newton from its pose and tensions),
+    checked by :func:`_checked`."""
+    lam = lo.tensions[list(cables)] / lo.lengths[list(cables)]
+    x, ok, resid, _ = branch.newton(robot, cables, lo.lengths, branch.unknowns(lo.position, lo.rotation, lam))
+    if not ok:
+        raise _Stop(_singular(events, k, lo, f"Newton does not converge after the cable {what}"))
+    return _checked(robot, events, k, branch.state(robot, cables, lo.lengths, x, lo.t, resid))
 
 
 def _checked(robot, events, k, st):
