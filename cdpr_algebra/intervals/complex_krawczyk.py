@@ -105,11 +105,12 @@ def realified_jacobian(J, N: int, n: int) -> Interval:
     return Interval(lo, hi)
 
 
-def _complex_newton(system_float, Z, iterations: int):
-    """Newton's method in complex floats on the rows of Z (N, n), vectorized; rows whose step fails stay put."""
+def _complex_newton(system_float, Z, iterations: int, rows=None):
+    """Newton's method in complex floats on the rows of Z (N, n), vectorized; rows whose step fails stay put.
+    ``rows``: the batch rows of the system that Z's rows are (default 0 .. N - 1)."""
     N, n = Z.shape
     Z = Z.copy()
-    rows = np.arange(N)
+    rows = np.arange(N) if rows is None else rows
     for _ in range(iterations):
         F, J = system_float([Z[:, k] for k in range(n)], rows, True)
         Fm = np.stack([np.broadcast_to(np.asarray(f, dtype=complex), (N,)) for f in F], axis=1)
@@ -143,6 +144,9 @@ def _real_residual(system, n: int, rows):
     return real_residual
 
 
+KRAWCZYK_CHUNK = 128  # roots per vectorized Krawczyk evaluation (memory: O(chunk n^3))
+
+
 @dataclass(frozen=True)
 class ComplexRootBoxes:
     """Outcome of :func:`certify_complex_roots` for N roots of n unknowns.
@@ -165,6 +169,32 @@ class ComplexRootBoxes:
     @property
     def count(self) -> int:
         return int(np.sum(self.proven))
+
+
+def _krawczyk_round(system, n, part, Y, r, rmax, lo, hi, proven, reason, max_rel_width):
+    """One epsilon-inflation round of :func:`certify_complex_roots` on the roots ``part`` (updates r, lo, hi,
+    proven, reason in place); returns those still pending."""
+    y, rr = Y[part], r[part]
+    X = Interval(y - rr, y + rr)
+    _, J = system(_complex_box(X, n), part, True)
+    K, ok = krawczyk(_real_residual(system, n, part), X, y, JX=realified_jacobian(J, len(part), n))
+    inside = ok & np.all((K.lo > X.lo) & (K.hi < X.hi), axis=1)
+    done = part[inside]
+    proven[done] = True
+    lo[done] = np.fmax(X.lo[inside], K.lo[inside])
+    hi[done] = np.fmin(X.hi[inside], K.hi[inside])
+    rest = ~inside
+    with np.errstate(invalid="ignore"):
+        dev = np.maximum(np.abs(K.lo[rest] - y[rest]), np.abs(K.hi[rest] - y[rest]))
+    dev = np.where(np.isfinite(dev), dev, np.inf)
+    r_new = np.maximum(2 * rr[rest], 1.5 * dev)
+    idx = part[rest]
+    too_wide = np.any(r_new > rmax[idx], axis=1)
+    for k in idx[too_wide]:
+        reason[k] = (f"Krawczyk test not satisfied in any box of relative width <= {max_rel_width:.0e}: "
+                     f"the root is not proven to exist and be unique (ill-conditioned or singular)")
+    r[idx] = r_new
+    return idx[~too_wide]
 
 
 def certify_complex_roots(system, system_float, Z, scale, real_rtol: float = 1e-8,
@@ -191,7 +221,8 @@ def certify_complex_roots(system, system_float, Z, scale, real_rtol: float = 1e-
     is_real = np.all(np.abs(Z.imag) <= real_rtol * (1 + np.abs(Z.real)), axis=1)
     finite = np.all(np.isfinite(Z), axis=1)
     Z0 = np.where(finite[:, None], np.where(is_real[:, None], Z.real + 0j, Z), 0.0)
-    Zn = _complex_newton(system_float, Z0, 2)
+    Zn = np.concatenate([_complex_newton(system_float, Z0[c0:c0 + KRAWCZYK_CHUNK], 2, np.arange(c0, min(N, c0 + KRAWCZYK_CHUNK)))
+                         for c0 in range(0, N, KRAWCZYK_CHUNK)])
     Y = np.hstack([Zn.real, np.where(is_real[:, None], 0.0, Zn.imag)])  # a real point stays real, rounding aside
     s = np.maximum(np.broadcast_to(np.asarray(scale, dtype=float), (n,)), np.abs(Y[:, :n] + 1j * Y[:, n:]))
     s = np.hstack([s, s])
@@ -212,27 +243,12 @@ def certify_complex_roots(system, system_float, Z, scale, real_rtol: float = 1e-
     for _ in range(max_iter):
         if not len(pending):
             break
-        y, rr = Y[pending], r[pending]
-        X = Interval(y - rr, y + rr)
-        _, J = system(_complex_box(X, n), pending, True)
-        K, ok = krawczyk(_real_residual(system, n, pending), X, y, JX=realified_jacobian(J, len(pending), n))
-        inside = ok & np.all((K.lo > X.lo) & (K.hi < X.hi), axis=1)
-        done = pending[inside]
-        proven[done] = True
-        lo[done] = np.fmax(X.lo[inside], K.lo[inside])
-        hi[done] = np.fmin(X.hi[inside], K.hi[inside])
-        rest = ~inside
-        with np.errstate(invalid="ignore"):
-            dev = np.maximum(np.abs(K.lo[rest] - y[rest]), np.abs(K.hi[rest] - y[rest]))
-        dev = np.where(np.isfinite(dev), dev, np.inf)
-        r_new = np.maximum(2 * rr[rest], 1.5 * dev)
-        idx = pending[rest]
-        too_wide = np.any(r_new > rmax[idx], axis=1)
-        for k in idx[too_wide]:
-            reason[k] = (f"Krawczyk test not satisfied in any box of relative width <= {max_rel_width:.0e}: "
-                         f"the root is not proven to exist and be unique (ill-conditioned or singular)")
-        r[idx] = r_new
-        pending = idx[~too_wide]
+        # in chunks of KRAWCZYK_CHUNK roots: the interval products of one chunk stay within tens of MiB
+        kept = []
+        for c0 in range(0, len(pending), KRAWCZYK_CHUNK):
+            part = pending[c0:c0 + KRAWCZYK_CHUNK]
+            kept.append(_krawczyk_round(system, n, part, Y, r, rmax, lo, hi, proven, reason, max_rel_width))
+        pending = np.concatenate(kept)
     for k in pending:
         reason[k] = f"Krawczyk test not satisfied after {max_iter} inflations"
     imag_lo, imag_hi = lo[:, n:], hi[:, n:]
