@@ -159,3 +159,22 @@ def test_the_checks_see_a_violation(tmp_path):
     assert RANK[_part("cdpr_algebra.cli.main")] > RANK[_part("cdpr_algebra.dgp.mod")]  # dgp -> cli is upward
     assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == [["a", "b", "c", "a"]]
     assert _cycles({"a": {"b"}, "b": {"c"}}) == []
+
+
+def test_numeric_dgp_path_runs_without_sympy():
+    """Issue 19 item 5: the numeric path (CLI dgp of a shipped robot: tracking, endgame, certificates) imports
+    no sympy (symbolic work is for derivations and user expressions); checked in a fresh interpreter."""
+    import subprocess
+    import sys
+
+    robot = PACKAGE.parent / "examples" / "seed000_test1.toml"
+    code = ("import sys, io, contextlib\nfrom cdpr_algebra.cli.main import main\n"
+            f"sys.argv = ['cdpr', 'dgp', {str(robot)!r}, '--json']\n"
+            "out = io.StringIO()\n"
+            "with contextlib.redirect_stdout(out):\n"
+            "    try:\n        main()\n    except SystemExit as e:\n        assert not e.code, e.code\n"
+            "assert '\"complete\": true' in out.getvalue()\n"
+            "print(sorted(m for m in sys.modules if m == 'sympy' or m.startswith('sympy.')))\n")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert run.stdout.strip().splitlines()[-1] == "[]"

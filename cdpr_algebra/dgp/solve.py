@@ -254,6 +254,8 @@ class FastTautSystem:
     Everything else (name, hash, equations, mpmath evaluators, used by the projective retries) is the
     sympy family's."""
 
+    kernel_constants = None  # no constants beyond the parameters (answered here: asking the family builds it)
+
     def __init__(self, m: int):
         self._family = None
         self.mm = m

@@ -10,7 +10,6 @@ from __future__ import annotations
 import weakref
 
 import numpy as np
-import sympy as sp
 
 from .systems import PolynomialSystem
 
@@ -40,8 +39,15 @@ class HomogenizedQuadratic:
         self.system, self.c = system, np.asarray(c, dtype=complex)
         self.n, self.neq, self.m = system.n + 1, system.neq + 1, system.m
         self.degrees = tuple(system.degrees) + (1,)
-        self.name = f"{getattr(system, 'name', 'system')}_projective"
-        self.hash = f"{getattr(system, 'hash', id(system))}:quadratic-projective"
+
+    @property
+    def name(self) -> str:
+        return f"{getattr(self.system, 'name', 'system')}_projective"
+
+    @property
+    def hash(self) -> str:
+        """The system's hash (asked for only when needed: a lazily built system may be slow to hash)."""
+        return f"{getattr(self.system, 'hash', id(self.system))}:quadratic-projective"
 
     def compiled_kernels(self):
         """When the system has compiled kernels: (its fj, its fjt, dense LU factor and apply, True), the last
@@ -143,6 +149,8 @@ def projectivize(system, seed: int = 20131) -> tuple:
     key = (system.hash, seed)
     if key in _CACHE:
         return _CACHE[key]
+    import sympy as sp
+
     c = _chart(system.n, seed)
     y0 = sp.Symbol("_y0")
     ys = [sp.Symbol(f"_y_{v}") for v in system.variables]

@@ -20,7 +20,6 @@ import itertools
 from dataclasses import dataclass
 
 import numpy as np
-import sympy as sp
 
 from .homotopies import ParameterHomotopy, StraightLineHomotopy
 from .systems import PolynomialSystem
@@ -63,6 +62,8 @@ def total_degree(target: PolynomialSystem) -> StartSystem:
 
 
 def _group_degrees(system: PolynomialSystem, groups):
+    import sympy as sp
+
     D = np.zeros((system.neq, len(groups)), dtype=int)
     for i, e in enumerate(system.equations):
         for j, g in enumerate(groups):
@@ -89,6 +90,8 @@ def multi_homogeneous_bezout_number(system: PolynomialSystem, groups) -> int:
 
 def multi_homogeneous(target: PolynomialSystem, groups, seed: int | None = 0) -> StartSystem:
     """Linear-product start system for the variable ``groups`` (a partition of the unknowns)."""
+    import sympy as sp
+
     groups = [tuple(g) for g in groups]
     allv = [v for g in groups for v in g]
     if sorted(map(str, allv)) != sorted(map(str, target.variables)) or len(allv) != target.n:

@@ -40,35 +40,40 @@ import hashlib
 from typing import Sequence
 
 import numpy as np
-import sympy as sp
-from sympy.printing.pycode import PythonCodePrinter
 
 __all__ = ["PolynomialSystem", "compile_straight_line"]
 
 
-class _Printer(PythonCodePrinter):
-    """Python code for numpy arrays: integer powers as products, exact rationals as floats."""
+def _printer():
+    """The code printer (a sympy class: built on first use, so that importing the numeric engine does not
+    import sympy)."""
+    from sympy.printing.pycode import PythonCodePrinter
 
-    def _print_Pow(self, expr, rational=False):
-        b, e = expr.as_base_exp()
-        if e.is_Integer and 1 < int(e) <= 8:
-            s = self.parenthesize(b, 100)
-            return "*".join([s] * int(e))
-        if e.is_Integer and int(e) == -1:
-            return "(1.0/%s)" % self.parenthesize(b, 100)
-        return super()._print_Pow(expr, rational=rational)
+    class _Printer(PythonCodePrinter):
+        """Python code for numpy arrays: integer powers as products, exact rationals as floats."""
 
-    def _print_Rational(self, expr):
-        return repr(float(expr.p) / float(expr.q))
+        def _print_Pow(self, expr, rational=False):
+            b, e = expr.as_base_exp()
+            if e.is_Integer and 1 < int(e) <= 8:
+                s = self.parenthesize(b, 100)
+                return "*".join([s] * int(e))
+            if e.is_Integer and int(e) == -1:
+                return "(1.0/%s)" % self.parenthesize(b, 100)
+            return super()._print_Pow(expr, rational=rational)
 
-    def _print_Integer(self, expr):
-        return repr(float(int(expr)))
+        def _print_Rational(self, expr):
+            return repr(float(expr.p) / float(expr.q))
 
-    def _print_Float(self, expr):
-        return repr(float(expr))
+        def _print_Integer(self, expr):
+            return repr(float(int(expr)))
 
-    def _print_ImaginaryUnit(self, expr):
-        return "1j"
+        def _print_Float(self, expr):
+            return repr(float(expr))
+
+        def _print_ImaginaryUnit(self, expr):
+            return "1j"
+
+    return _Printer({"fully_qualified_modules": False, "inline": True, "allow_unknown_functions": False})
 
 
 def compile_straight_line(outputs, inputs, name="_f"):
@@ -79,7 +84,9 @@ def compile_straight_line(outputs, inputs, name="_f"):
     Python expression (e.g. ``"X[0]"``). The generated function is ``name(X, P, F, J, JP)``.
     Returns ``(function, source_text)``.
     """
-    printer = _Printer({"fully_qualified_modules": False, "inline": True, "allow_unknown_functions": False})
+    import sympy as sp
+
+    printer = _printer()
     exprs = [e for _, e in outputs]
     nonconst = [i for i, e in enumerate(exprs) if not e.is_number]
     repl, reduced = sp.cse([exprs[i] for i in nonconst], symbols=sp.numbered_symbols("_c"), optimizations=None)
@@ -114,6 +121,8 @@ class PolynomialSystem:
     """
 
     def __init__(self, equations: Sequence, variables: Sequence, parameters: Sequence = (), name: str = "system"):
+        import sympy as sp
+
         self.equations = tuple(sp.sympify(e) for e in equations)
         self.variables = tuple(variables)
         self.parameters = tuple(parameters)
@@ -142,6 +151,8 @@ class PolynomialSystem:
 
     # -- compilation -------------------------------------------------------------------------
     def _outputs(self, kind):
+        import sympy as sp
+
         xs, ps = self.variables, self.parameters
         out = [(f"F[:, {i}]", e) for i, e in enumerate(self.equations)]
         if kind in ("fj", "fjp"):
@@ -212,6 +223,7 @@ class PolynomialSystem:
         """mpmath evaluators ``(F(x, p) -> list, J(x, p) -> matrix, JP(x, p) -> matrix)`` (lazy)."""
         if self._mp is None:
             import mpmath
+            import sympy as sp
 
             args = list(self.variables) + list(self.parameters)
             F = sp.Matrix(self.equations)
@@ -233,6 +245,8 @@ class PolynomialSystem:
 
     def substitute_parameters(self, p) -> "PolynomialSystem":
         """The system with parameters replaced by numbers (no parameters left)."""
+        import sympy as sp
+
         sub = {s: sp.nsimplify(complex(v)) if complex(v).imag else sp.Float(complex(v).real, 17)
                for s, v in zip(self.parameters, np.asarray(p, dtype=complex))}
         return PolynomialSystem([e.xreplace(sub) for e in self.equations], self.variables, (), self.name)

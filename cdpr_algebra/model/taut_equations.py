@@ -14,7 +14,6 @@ Unknowns: the platform pose as the position p of the platform-frame origin and t
 from __future__ import annotations
 
 import numpy as np
-import sympy as sp
 
 from cdpr_algebra.homotopy.systems import PolynomialSystem
 
@@ -31,6 +30,8 @@ def taut_family(m: int) -> PolynomialSystem:
         return _FAMILIES[m]
     if not 2 <= m <= 6:
         raise ValueError("the homotopy formulation covers m = 2 .. 6 taut cables (m = 1 is analytic)")
+    import sympy as sp
+
     p = sp.symbols("px py pz")
     u = sp.symbols("ux uy uz")
     v = sp.symbols("vx vy vz")
