@@ -51,3 +51,16 @@ def test_python_dash_m():
     bad = subprocess.run([sys.executable, "-m", "cdpr_algebra", "igp", "missing.toml", "--orientation", "0", "0", "0"],
                          capture_output=True, text=True)
     assert bad.returncode == 2 and "no such file" in bad.stderr and "Traceback" not in bad.stderr
+
+
+def test_warm_solves_and_reports(tmp_path, capsys):
+    """``cdpr warm`` (run by setup.py at build time) solves the robot by every compiled path and says so; a robot
+    without cable lengths is an input error naming the field."""
+    assert main(["warm", "examples/seed000_test1.toml"]) == 0
+    line = capsys.readouterr().out.strip()
+    assert line.startswith("examples/seed000_test1.toml: dgp ") and "interval" in line and "track" in line
+    text = open("examples/seed000_test1.toml", encoding="utf-8").read().replace("lengths = [7.5, 10.0, 9.5]", "")
+    robot = tmp_path / "no_lengths.toml"
+    robot.write_text(text)
+    assert main(["warm", str(robot)]) == 2
+    assert "lengths" in capsys.readouterr().err

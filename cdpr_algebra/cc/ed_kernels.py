@@ -26,7 +26,7 @@ def ed_values(Z, C, a, b, D=None) -> np.ndarray:
     """(N, 48) values of :func:`ed_batch` (D: zero direction when None)."""
     N = len(Z)
     Z = np.ascontiguousarray(Z, dtype=np.complex128)
-    C = np.ascontiguousarray(np.broadcast_to(np.asarray(C, dtype=np.complex128), (N, 20)))
+    C = np.array(np.broadcast_to(np.asarray(C, dtype=np.complex128), (N, 20)), order="C")  # writable: one signature
     D = np.zeros((N, 20), dtype=np.complex128) if D is None else np.ascontiguousarray(D, dtype=np.complex128)
     out = np.empty((N, 48), dtype=np.complex128)
     ed_batch(Z, C, np.asarray(a, dtype=np.complex128), np.asarray(b, dtype=np.complex128), D, out)

@@ -12,6 +12,7 @@
     cdpr sweep ROBOT --vary NAME=START:STOP:NUM .. --out DIR [--kind ..] [--workers N] [--scheduler A] (sweep.py)
     cdpr plot-sweep DIR [--value NAME] [--out FILE.png]                                   (plot_sweep.py)
     cdpr export ROBOT --taut C1 .. Cm [--lengths ..] [--format minibex|phc|json]          (export.py)
+    cdpr warm ROBOT [ROBOT ..]   (compile and cache the numeric kernels; pip install . runs it)   (warm.py)
 
 Exit status: 0 on success, 2 on bad input (one line on stderr naming the field and the problem), 3 when the
 result is incomplete (``dgp``: some subproblem has failed paths or regular endpoints without a Krawczyk
@@ -28,7 +29,7 @@ from cdpr_algebra.model.errors import CdprInputError
 
 from .common import INCOMPLETE, Parser  # noqa: F401  (INCOMPLETE: the documented exit status)
 
-COMMANDS = ("igp", "dgp", "plot", "cc", "crosscheck", "track", "sweep", "plot-sweep", "export")  # each a module of this package with add_parser and run
+COMMANDS = ("igp", "dgp", "plot", "cc", "crosscheck", "track", "sweep", "plot-sweep", "export", "warm")  # each a module of this package with add_parser and run
 
 
 def _command(name):

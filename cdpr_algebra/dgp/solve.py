@@ -295,8 +295,9 @@ class FastTautSystem:
         if x.ndim == 1:
             x = x[None, :]
         N = len(x)
-        X = np.ascontiguousarray(x)
-        P = np.ascontiguousarray(np.broadcast_to(np.asarray(p, dtype=complex), (N, self.m)))
+        X = np.array(x, order="C")
+        # writable copies: a read-only array (a broadcast view) would compile the kernels a second time
+        P = np.array(np.broadcast_to(np.asarray(p, dtype=complex), (N, self.m)), order="C")
         F = np.empty((N, self.neq), dtype=complex)
         J = np.zeros((N if jac else 1, self.neq, self.n), dtype=complex)
         taut_fj_batch(X, P, F, J, jac)
