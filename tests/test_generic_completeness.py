@@ -17,6 +17,7 @@ import sympy as sp
 from cdpr_algebra.dgp.solve import available_m, fast_family, generic_path
 from cdpr_algebra.homotopy import PolynomialSystem, SolveOptions, TrackerOptions
 from cdpr_algebra.homotopy.monodromy import load_instance, monodromy_solve
+from cdpr_algebra.homotopy.results import FAILURES
 from cdpr_algebra.homotopy.trace_test import (TracePencilSystem, TraceSliceSystem, TraceTestOptions, compute_trace,
                                               distinct_points,
                                               verify_solution_completeness)
@@ -225,7 +226,7 @@ def test_distinct_points_keeps_close_ill_conditioned_solutions_apart():
     assert sorted(kept[:, 0].real) == pytest.approx([-r, r], rel=1e-12)
 
 
-@pytest.mark.parametrize("m", [4])
+@pytest.mark.parametrize("m", [4, 5])
 def test_phcpack_count_recorded_and_contained_in_the_stored_set(m):
     """PHCpack's blackbox on a random complex instance of the m-cable family (recorded by
     derivations/certify_generic_dgp.py --phc): its solutions solve that instance (residuals recomputed here), they are
@@ -246,3 +247,16 @@ def test_phcpack_count_recorded_and_contained_in_the_stored_set(m):
     _, X, _ = load_instance(generic_path(m))
     assert moved["phc_unmatched"] == 0 and moved["phc_matched"] == len(P)
     assert moved["distinct"] <= len(X) and phc["union_distinct"] == moved["distinct"] == len(X)
+    # recomputed: the stored set moved to PHCpack's instance by the DGP's parameter homotopy reaches every PHCpack
+    # solution (but for as many as its paths failed), and its other endpoints are at most the stored points that
+    # PHCpack missed
+    from cdpr_algebra.dgp.solve import _generic, default_options
+    from cdpr_algebra.homotopy.many_targets import solve_targets
+
+    p_gen, X_gen = _generic(m)
+    (res,) = solve_targets(fam, p_gen, X_gen, [p], seed=0, options=default_options(), gamma=True, retries=1)
+    Z = np.array([s.x for s in res.solutions]).reshape(-1, fam.n)
+    failed = sum(1 for q in res.track.paths if q.status in FAILURES)
+    d = np.abs(Z[:, None, :] - P[None, :, :]).max(axis=2) / (1 + np.abs(P).max(axis=1))[None, :]
+    assert int(np.sum(d.min(axis=0) <= 1e-6)) >= len(P) - failed
+    assert int(np.sum(d.min(axis=1) > 1e-6)) <= len(X) - len(P)
