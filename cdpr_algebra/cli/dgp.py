@@ -1,5 +1,6 @@
 """``cdpr dgp``: every equilibrium of the robot at its cable lengths, every set of taut cables (Berti, Merlet and
-Carricato 2016), by parameter homotopies; exit status 3 when a subproblem is not proven complete."""
+Carricato 2016), by parameter homotopies; exit status 3 when a subproblem is not proven complete (with ``--settle``:
+when an admissible equilibrium may be missing, the interval branch and prune having settled what it could)."""
 
 from __future__ import annotations
 
@@ -20,6 +21,10 @@ def add_parser(subparsers) -> None:
     dgp.add_argument("--mpmath-retry", action="store_true",
                      help="track up to 4 paths per subproblem that fail in double precision again in arbitrary "
                           "precision (slow: seconds to minutes per path)")
+    dgp.add_argument("--settle", action="store_true",
+                     help="run the interval branch and prune on every incomplete subproblem: where it is complete it "
+                          "proves the subproblem's admissible equilibria (and adds any the homotopy missed); the exit "
+                          "status is then 0 when every admissible equilibrium is known (seconds per subproblem)")
     dgp.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
@@ -47,11 +52,29 @@ def run(args) -> int:
 
         options = replace(default_options(), retry_mpmath=True)
     result = dgp(robot, lengths, jobs=args.jobs, progress=progress, options=options)
+    records = ()
+    if args.settle and not result.complete:
+        from cdpr_algebra.comparison.settle import settle_incomplete
+
+        def settle_progress(rec, done, total):
+            print(f"[settle {done}/{total}] taut {list(rec.taut)}: {rec.outcome}: {rec.detail}"
+                  + (f", {rec.added} equilibrium(s) the homotopy missed" if rec.added else "")
+                  + f", {rec.seconds:.2f} s", file=sys.stderr, flush=True)
+
+        result, records = settle_incomplete(robot, result, lengths, progress=settle_progress)
     if args.json:
-        print(json.dumps(result.to_dict(), indent=2))
+        out = result.to_dict()
+        if args.settle:
+            out["settle"] = [r.to_dict() for r in records]
+        print(json.dumps(out, indent=2))
     else:
         print(f"{robot.name}: DGP, lengths {', '.join(f'{v:g}' for v in lengths)}")
         print(dgp_table(result, robot.n))
+    if args.settle and result.admissible_complete and not result.complete:
+        print(f"cdpr: every admissible equilibrium is known: the interval branch and prune proved the admissible sets "
+              f"of the {len(result.incomplete)} subproblem(s) whose homotopy account is incomplete (their complex "
+              f"solution counts stay unproven)", file=sys.stderr)
+        return 0
     if not result.complete:
         print(f"cdpr: incomplete: {len(result.incomplete)} subproblem(s) not proven complete, so equilibria may be "
               f"missing there (exit status 3):", file=sys.stderr)
@@ -59,5 +82,7 @@ def run(args) -> int:
             print(f"  {list(s.taut)}: {incompleteness(s)}", file=sys.stderr)
         if any(s.failed_paths for s in result.incomplete):
             print("  (--mpmath-retry tracks up to 4 failed paths per subproblem in arbitrary precision)", file=sys.stderr)
+        if not args.settle:
+            print("  (--settle proves their admissible equilibria by interval branch and prune)", file=sys.stderr)
         return INCOMPLETE
     return 0

@@ -116,6 +116,7 @@ class DGPSolution:
     certified: bool | None = None
     certificate: object = None  # certify.Certificate (interval proof, issue 5) or None when not certified
     alternatives: tuple = ()  # the same pose found with other taut sets (redundantly constrained): DGPSolutions
+    found_by: str = "homotopy"  # or "interval": proven by the branch and prune of a subproblem the homotopy left incomplete
 
     def with_certificate(self, cert) -> "DGPSolution":
         """This solution with an interval certificate attached (the proven stability class replaces the floating
@@ -136,6 +137,7 @@ class DGPSolution:
                 "rotation": jsonable(self.rotation), "tensions": jsonable(self.tensions), "hessian": self.hessian,
                 "stable": self.stable, "certified": self.certified,
                 "certificate": None if self.certificate is None else self.certificate.to_dict(),
+                "found_by": self.found_by,
                 "alternatives": [{"taut": list(a.taut), "tensions": jsonable(a.tensions), "hessian": a.hessian,
                                   "certified": a.certified} for a in self.alternatives]}
 
@@ -163,6 +165,13 @@ class DGPSubproblem:
     certified: int | None = None  # regular endpoints proven unique in pairwise disjoint Krawczyk boxes
     certified_real: int | None = None  # of those, proven real
     uncertified: dict = field(default_factory=dict)  # regular endpoints not certified, per reason
+    settled: str | None = None  # how the admissible set was proven complete although the homotopy's account is not
+
+    @property
+    def admissible_complete(self) -> bool:
+        """Every admissible equilibrium of this taut set is known: the homotopy's account is complete, or the set
+        was ``settled`` by another proof (:func:`cdpr_algebra.comparison.settle.settle_incomplete`)."""
+        return self.complete or self.settled is not None
 
     @property
     def accounted(self) -> bool:
@@ -188,7 +197,8 @@ class DGPSubproblem:
                 "certified": self.certified, "certified_real": self.certified_real,
                 "uncertified": dict(self.uncertified),
                 "finite": self.finite, "real": self.real, "admissible": self.admissible,
-                "failed_paths": self.failed_paths, "seconds": self.seconds, "skipped": self.skipped}
+                "failed_paths": self.failed_paths, "seconds": self.seconds, "skipped": self.skipped,
+                "settled": self.settled, "admissible_complete": self.admissible_complete}
 
 
 @dataclass(frozen=True)
@@ -231,6 +241,11 @@ class DGPResult:
     def status(self) -> str:
         return "complete" if self.complete else "incomplete"
 
+    @property
+    def admissible_complete(self) -> bool:
+        """Every admissible equilibrium is known (each subproblem complete or settled), whatever the complex count."""
+        return all(s.admissible_complete for s in self.subproblems)
+
     def outcomes(self) -> dict:
         """Paths per outcome over all subproblems."""
         total = dict.fromkeys(OUTCOMES, 0)
@@ -241,6 +256,8 @@ class DGPResult:
 
     def to_dict(self) -> dict:
         return {"status": self.status, "complete": self.complete, "incomplete": [list(s.taut) for s in self.incomplete],
+                "admissible_complete": self.admissible_complete,
+                "settled": [list(s.taut) for s in self.incomplete if s.settled is not None],
                 "outcomes": self.outcomes(), "solutions": [s.to_dict() for s in self.solutions],
                 "subproblems": [s.to_dict() for s in self.subproblems], "seconds": self.seconds, "seed": self.seed,
                 "options": (self.options or default_options()).to_dict()}
@@ -445,6 +462,20 @@ def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, opti
     sub, sols, Z = _solve_and_certify_solutions(robot, rho, cables, seed, certify, options)
     (sub,) = _with_endpoint_certificates(robot, rho, [(cables, sub, Z)])
     return sub, sols
+
+
+def equilibrium_from_pose(robot, rho, cables, position, rotation, tensions, found_by: str = "homotopy",
+                          certify: bool = True) -> DGPSolution:
+    """The DGPSolution of the 0-based taut set ``cables`` at a pose found by another method (tensions: all n, 0 on
+    slack cables): stability class from the reduced Hessian and, with ``certify``, the interval certificate of the
+    homotopy's own solutions (:func:`cdpr_algebra.certificates.equilibria.certify_taut_root`)."""
+    rho = np.asarray(rho, dtype=float)
+    idx = list(cables)
+    position, rotation = np.asarray(position, dtype=float), np.asarray(rotation, dtype=float)
+    tau = np.asarray(tensions, dtype=float)
+    sol = DGPSolution(tuple(c + 1 for c in idx), position, rotation, tau,
+                      _classify(robot, rho, idx, position, rotation, tau[idx]), found_by=found_by)
+    return _certify_solutions(robot, rho, [sol])[0] if certify else sol
 
 
 def _certify_solutions(robot, rho, sols):
@@ -656,6 +687,8 @@ def dgp_table(result: DGPResult, n: int) -> str:
                     + [f"{v:.3f}" for v in s.tensions] + [s.hessian, _certified_label(s)])
     lines = [format_table(headers, rows)] if rows else ["no admissible equilibrium"]
     for k, s in enumerate(result.solutions):
+        if s.found_by != "homotopy":
+            lines.append(f"  #{k + 1} found by the {s.found_by} solver only (the homotopy's subproblem is incomplete)")
         if s.certificate is not None and not s.certified:
             lines.append(f"  #{k + 1} not certified: {s.certificate.reason}")
         for a in s.alternatives:
@@ -672,7 +705,8 @@ def dgp_table(result: DGPResult, n: int) -> str:
         if s.skipped:
             lines.append(f"  skipped {list(s.taut)}: {s.skipped}")
         elif not s.complete:
-            lines.append(f"  incomplete {list(s.taut)}: {incompleteness(s)}")
+            lines.append(f"  incomplete {list(s.taut)}: {incompleteness(s)}"
+                         + (f"; admissible set settled by {s.settled}" if s.settled else ""))
     lines.append(summary_line(result))
     return "\n".join(lines)
 
@@ -683,6 +717,10 @@ def summary_line(result: DGPResult) -> str:
     subs = result.subproblems
     paths = sum(s.paths for s in subs)
     verdict = "complete" if result.complete else f"INCOMPLETE: {len(result.incomplete)} subproblem(s)"
+    settled = sum(1 for s in result.incomplete if s.settled)
+    if settled:
+        verdict += (f", the admissible equilibria of {settled} of them proven by interval branch and prune"
+                    + ("; every admissible equilibrium known" if result.admissible_complete else ""))
     cert = sum(s.certified or 0 for s in subs)
     cert_real = sum(s.certified_real or 0 for s in subs)
     return (f"paths {paths}: {o['regular']} regular, {o['singular']} singular, {o['at_infinity']} at infinity, "

@@ -1,0 +1,93 @@
+"""Settling incomplete DGP subproblems by the interval branch and prune (cdpr_algebra.comparison.settle, cdpr dgp
+--settle): with every homotopy path of Test 1's m >= 2 subproblems forced to fail, the interval search proves
+their admissible sets, returns the six equilibria of Berti et al. 2016 Table 1 (the homotopy's own complete run
+finds the same poses), and the CLI exits 0 because every admissible equilibrium is known; a homotopy solution
+that the complete interval search does not have is a disagreement, never settled."""
+
+import json
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="module")
+def test1():
+    from cdpr_algebra.model.robot import load_robot
+
+    return load_robot(ROOT / "examples" / "seed000_test1.toml")
+
+
+@pytest.fixture(scope="module")
+def normal(test1):
+    """The homotopy's own complete run (before any patch)."""
+    from cdpr_algebra.dgp.solve import dgp
+
+    return dgp(test1, jobs=1)
+
+
+@pytest.fixture()
+def failing(monkeypatch):
+    """Every path of m >= 2 fails: a budget of 3 steps, no projective retry."""
+    import cdpr_algebra.dgp.solve as dgp_mod
+
+    base = dgp_mod.default_options()
+    tiny = replace(base, tracker=replace(base.tracker, max_steps=3))
+    monkeypatch.setattr(dgp_mod, "default_options", lambda: tiny)
+    monkeypatch.setattr(dgp_mod, "PROJECTIVE_RETRIES", 0)
+    return dgp_mod
+
+
+def test_settle_recovers_every_admissible_equilibrium(test1, normal, failing):
+    from cdpr_algebra.comparison.settle import settle_incomplete
+
+    broken = failing.dgp(test1, jobs=1)
+    assert not broken.complete and not broken.admissible_complete and len(broken.solutions) == 0
+    settled, records = settle_incomplete(test1, broken)
+    assert len(records) == len(broken.incomplete) == 4  # [1, 2], [1, 3], [2, 3], [1, 2, 3]
+    assert all(r.outcome == "settled" for r in records)
+    assert settled.admissible_complete and not settled.complete
+    assert all(s.settled and not s.complete for s in settled.incomplete)
+    # Table 1 of Berti et al. 2016: six equilibria, all with three taut cables; found here by the interval search
+    assert len(settled.solutions) == 6 and all(s.found_by == "interval" and s.certified for s in settled.solutions)
+    assert settled.taut_set((1, 2, 3))[0].admissible == 6
+    d = settled.to_dict()
+    assert d["admissible_complete"] is True and d["complete"] is False and len(d["settled"]) == 4
+    assert {s["found_by"] for s in d["solutions"]} == {"interval"}
+    # the same poses as the homotopy's own complete run (another method), to the interval enclosures' widths
+    assert normal.complete and len(normal.solutions) == 6
+    a = np.array([np.concatenate([s.position, s.rotation.ravel()]) for s in sorted(normal.solutions, key=lambda s: s.position[0])])
+    b = np.array([np.concatenate([s.position, s.rotation.ravel()]) for s in sorted(settled.solutions, key=lambda s: s.position[0])])
+    assert np.max(np.abs(a - b)) <= 1e-6
+
+
+def test_settle_never_settles_a_disagreement(test1, failing):
+    """A homotopy 'solution' that the complete interval search does not have: disagree, not settled."""
+    from cdpr_algebra.comparison.settle import settle_incomplete
+    from cdpr_algebra.dgp.solve import DGPSolution
+
+    broken = failing.dgp(test1, jobs=1, max_m=2)
+    bogus = DGPSolution((1, 2), np.array([1.0, 1.0, 1.0]), np.eye(3), np.array([0.5, 0.5, 0.0]), ">")
+    settled, records = settle_incomplete(test1, replace(broken, solutions=(bogus,)))
+    rec = {r.taut: r for r in records}
+    assert rec[(1, 2)].outcome == "disagree" and "not among the proven solutions" in rec[(1, 2)].detail
+    assert settled.taut_set((1, 2))[0].settled is None and not settled.admissible_complete
+    assert rec[(1, 3)].outcome == rec[(2, 3)].outcome == "settled"
+
+
+def test_cli_settle_exit_status(test1, failing, tmp_path, capsys):
+    from cdpr_algebra.cli.main import main
+
+    path = tmp_path / "t1.json"
+    path.write_text(json.dumps(test1.to_dict()))
+    assert main(["dgp", str(path), "--jobs", "1", "--json"]) == 3
+    assert "--settle" in capsys.readouterr().err
+    assert main(["dgp", str(path), "--jobs", "1", "--json", "--settle"]) == 0
+    cap = capsys.readouterr()
+    out = json.loads(cap.out)
+    assert out["complete"] is False and out["admissible_complete"] is True and len(out["solutions"]) == 6
+    assert [r["outcome"] for r in out["settle"]] == ["settled"] * 4
+    assert "every admissible equilibrium is known" in cap.err
