@@ -282,3 +282,19 @@ def test_result_carries_the_seed_and_options_that_reproduce_it():
     assert len(a.solutions) == len(b.solutions) == 6
     for s, t in zip(a.solutions, b.solutions):
         assert s.taut == t.taut and np.allclose(s.position, t.position, atol=1e-9)
+
+
+@needs_m3
+def test_same_result_whatever_the_number_of_threads():
+    """Issue 19 item 4: one thread or two (subproblems in parallel, the compiled tracker without the GIL) give the
+    same JSON, timings aside."""
+    robot = load_robot(Path(__file__).resolve().parents[1] / "examples" / "seed000_test1.toml")
+
+    def stripped(res):
+        d = res.to_dict()
+        d.pop("seconds")
+        for s in d["subproblems"]:
+            s.pop("seconds")
+        return json.dumps(d, sort_keys=True)
+
+    assert stripped(dgp(robot, jobs=1)) == stripped(dgp(robot, jobs=2))

@@ -91,3 +91,13 @@ def test_cli_settle_exit_status(test1, failing, tmp_path, capsys):
     assert out["complete"] is False and out["admissible_complete"] is True and len(out["solutions"]) == 6
     assert [r["outcome"] for r in out["settle"]] == ["settled"] * 4
     assert "every admissible equilibrium is known" in cap.err
+
+
+def test_settle_same_whatever_the_number_of_threads(test1, failing):
+    from cdpr_algebra.comparison.settle import settle_incomplete
+
+    broken = failing.dgp(test1, jobs=1, max_m=2)
+    one, r1 = settle_incomplete(test1, broken, jobs=1)
+    two, r2 = settle_incomplete(test1, broken, jobs=2)
+    assert [(r.taut, r.outcome, r.detail) for r in r1] == [(r.taut, r.outcome, r.detail) for r in r2]
+    assert json.dumps(one.to_dict()["solutions"]) == json.dumps(two.to_dict()["solutions"])

@@ -512,7 +512,7 @@ def _nonempty(lo, hi, n):
     return True
 
 
-@nb.njit(cache=True, error_model="numpy")
+@nb.njit(cache=True, error_model="numpy", nogil=True)  # releases the GIL: subproblems search in threads
 def _contract_kernel(lo, hi, core, scale, max_sweeps, gain, rel, n_pt, use_n, sph, dst, chir, rows, gauss, do_gauss,
                      order):
     """:func:`contract` box by box; returns alive (N,) bool (a dead box also gets lo[:, 0] = inf).  order 0: the

@@ -61,7 +61,7 @@ def run(args) -> int:
                   + (f", {rec.added} equilibrium(s) the homotopy missed" if rec.added else "")
                   + f", {rec.seconds:.2f} s", file=sys.stderr, flush=True)
 
-        result, records = settle_incomplete(robot, result, lengths, progress=settle_progress)
+        result, records = settle_incomplete(robot, result, lengths, progress=settle_progress, jobs=args.jobs)
     if args.json:
         out = result.to_dict()
         if args.settle:

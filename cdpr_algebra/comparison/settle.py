@@ -19,7 +19,9 @@ every admissible equilibrium of the taut set.  :func:`settle_incomplete` runs it
 
 from __future__ import annotations
 
+import os
 import time
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -51,43 +53,56 @@ class SettleRecord:
 
 
 def settle_incomplete(robot, result: DGPResult, lengths=None, options: BPOptions | None = None,
-                      progress=None) -> tuple[DGPResult, tuple]:
+                      progress=None, jobs: int | None = None) -> tuple[DGPResult, tuple]:
     """(the result with its incomplete subproblems settled where the interval search proves their admissible set,
     one :class:`SettleRecord` per incomplete subproblem); see the module doc.  ``progress(record, done, total)``
-    after each subproblem."""
+    after each subproblem; ``jobs`` threads run the interval searches (default ``os.cpu_count()``; its compiled
+    kernels release the GIL), the matching and certificates run in the calling thread, in subproblem order, so the
+    result does not depend on ``jobs``."""
     rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
     todo = [s for s in result.subproblems if not s.complete]
     subs = {tuple(s.taut): s for s in result.subproblems}
     added_solutions, records = [], []
-    for k, sub in enumerate(todo):
+    jobs = os.cpu_count() if jobs is None else max(1, int(jobs))
+
+    def search(sub):
         t0 = time.perf_counter()
-        taut = tuple(sub.taut)
-        cables = [c - 1 for c in taut]
-        isub = solve_taut_set_interval(robot, rho, cables, options)
-        hsols = [s for s in result.solutions if tuple(s.taut) == taut]
-        if isub.skipped is not None or isub.undecided:
-            why = (f"interval search skipped ({isub.skipped})" if isub.skipped
-                   else f"interval search left {len(isub.undecided)} undecided box(es)")
-            rec = SettleRecord(taut, "undecided", why, None, 0, time.perf_counter() - t0)
-        else:
-            h_only, i_only = _match(robot, taut, hsols, list(isub.solutions))
-            if h_only:
-                where = "; ".join(f"position {jsonable(np.round(s.position, 6))}" for s in h_only)
-                rec = SettleRecord(taut, "disagree", f"{len(h_only)} homotopy solution(s) not among the proven "
-                                   f"solutions of the complete interval search ({where})", isub.admissible, 0,
-                                   time.perf_counter() - t0)
-            else:
-                for s in i_only:
-                    added_solutions.append(equilibrium_from_pose(robot, rho, cables, s.position, s.rotation,
-                                                                 s.tensions, found_by="interval"))
-                rec = SettleRecord(taut, "settled", f"the interval branch and prune ({isub.admissible} admissible "
-                                   f"proven, no undecided box, {isub.boxes} boxes)", isub.admissible, len(i_only),
-                                   time.perf_counter() - t0)
-                subs[taut] = replace(sub, settled=rec.detail, admissible=isub.admissible)
-        records.append(rec)
-        if progress:
-            progress(rec, k + 1, len(todo))
+        return solve_taut_set_interval(robot, rho, [c - 1 for c in sub.taut], options), time.perf_counter() - t0
+
+    with ThreadPoolExecutor(max_workers=jobs) as ex:
+        futures = [ex.submit(search, s) for s in todo]
+        for k, (sub, fut) in enumerate(zip(todo, futures)):
+            isub, seconds = fut.result()
+            rec, added = _settle_one(robot, rho, result, sub, isub, seconds)
+            if rec.outcome == "settled":
+                subs[tuple(sub.taut)] = replace(sub, settled=rec.detail, admissible=isub.admissible)
+            added_solutions += added
+            records.append(rec)
+            if progress:
+                progress(rec, k + 1, len(todo))
     sols = list(result.solutions) + added_solutions
     sols.sort(key=lambda s: (-len(s.taut), s.taut, tuple(np.round(s.position, 9))))
     settled = replace(result, solutions=tuple(sols), subproblems=tuple(subs[tuple(s.taut)] for s in result.subproblems))
     return settled, tuple(records)
+
+
+def _settle_one(robot, rho, result, sub, isub, seconds):
+    """(SettleRecord, added DGPSolutions) of one subproblem from its interval search ``isub``."""
+    t0 = time.perf_counter() - seconds
+    taut = tuple(sub.taut)
+    cables = [c - 1 for c in taut]
+    hsols = [s for s in result.solutions if tuple(s.taut) == taut]
+    if isub.skipped is not None or isub.undecided:
+        why = (f"interval search skipped ({isub.skipped})" if isub.skipped
+               else f"interval search left {len(isub.undecided)} undecided box(es)")
+        return SettleRecord(taut, "undecided", why, None, 0, time.perf_counter() - t0), []
+    h_only, i_only = _match(robot, taut, hsols, list(isub.solutions))
+    if h_only:
+        where = "; ".join(f"position {jsonable(np.round(s.position, 6))}" for s in h_only)
+        return SettleRecord(taut, "disagree", f"{len(h_only)} homotopy solution(s) not among the proven solutions of "
+                            f"the complete interval search ({where})", isub.admissible, 0, time.perf_counter() - t0), []
+    added = [equilibrium_from_pose(robot, rho, cables, s.position, s.rotation, s.tensions, found_by="interval")
+             for s in i_only]
+    detail = (f"the interval branch and prune ({isub.admissible} admissible proven, no undecided box, {isub.boxes} "
+              f"boxes)")
+    return SettleRecord(taut, "settled", detail, isub.admissible, len(added), time.perf_counter() - t0), added

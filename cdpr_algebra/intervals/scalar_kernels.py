@@ -254,7 +254,7 @@ def _sparse_midrad_sums(am_, ar_, ptr, row, bm_, br_, e, S2):
     return S1, S2, S3
 
 
-@nb.njit(cache=True, error_model="numpy")
+@nb.njit(cache=True, error_model="numpy", nogil=True)  # releases the GIL: subproblems search in threads
 def _taylor_kernel(lo, hi, c0, jh_ptr, jh_row, jh_m, jh_r, jh_t, sf_ptr, sf_row, sf_m, sf_r, sf_t, pj, pk, scale,
                    iterations, gain, excluded, inner):
     """Compiled second-order operator of :meth:`QuadraticSystem.taylor` applied to each box (row of lo, hi (N, h)),
