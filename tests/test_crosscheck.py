@@ -7,6 +7,7 @@ zero-tension equilibrium: the interval search leaves it undecided on the domain 
 
 import json
 from dataclasses import fields, replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -189,3 +190,18 @@ def test_comparison_reuses_a_dgp_run(test1):
     assert sum(len(res.taut_set([i + 1 for i in c])[1]) for c in sets) == len(res.solutions) > 0
     with pytest.raises(KeyError, match="not solved"):
         res.taut_set([1, 2, 3, 4])
+
+
+def test_crosscheck_same_whatever_the_number_of_threads():
+    """The interval searches run ahead in threads; the comparison does not depend on how many."""
+    from cdpr_algebra.comparison.compare import crosscheck
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot(Path(__file__).resolve().parents[1] / "examples" / "seed000_test1.toml")
+
+    def key(res):
+        return [(c.taut, c.homotopy, c.interval, c.undecided, c.agree, c.compared, c.interval_boxes)
+                for c in res.comparisons]
+
+    one, two = crosscheck(robot, jobs=1), crosscheck(robot, jobs=2)
+    assert key(one) == key(two) and all(c.agree for c in two.comparisons)

@@ -40,6 +40,8 @@ def add_parser(subparsers) -> None:
     p.add_argument("--max-m", type=int, default=6, metavar="M", help="largest number of taut cables (default 6)")
     p.add_argument("--against", metavar="FILE", help="another solver's results (JSON or text boxes, see "
                                                      "cdpr_algebra.comparison.external) instead of our interval solver")
+    p.add_argument("--jobs", type=int, default=None,
+                   help="threads for the interval searches (default: all cores; the result does not depend on it)")
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
@@ -81,7 +83,9 @@ def run(args) -> int:
               f"{c.interval_boxes} boxes), {what}, "
               f"{c.homotopy_seconds:.2f} s + {c.interval_seconds:.2f} s", file=sys.stderr, flush=True)
 
-    result = crosscheck(robot, lengths, sets=sets, max_m=args.max_m, progress=progress)
+    if args.jobs is not None and args.jobs < 1:
+        raise CdprInputError("--jobs", f"expected a number >= 1, got {args.jobs}")
+    result = crosscheck(robot, lengths, sets=sets, max_m=args.max_m, progress=progress, jobs=args.jobs)
     if args.json:
         print(json.dumps(result.to_dict(), indent=2))
     else:

@@ -38,12 +38,14 @@ from __future__ import annotations
 
 import inspect
 import itertools
+import os
 import time
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
 
-from cdpr_algebra.model.taut_sets import solve_each_taut_set
+from cdpr_algebra.model.taut_sets import lengths_and_taut_sets, solve_each_taut_set
 from cdpr_algebra.bp.results import BPOptions
 from cdpr_algebra.bp.search import solve_taut_set_interval
 from cdpr_algebra.report.jsonable import jsonable
@@ -264,12 +266,30 @@ def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed:
 
 
 def crosscheck(robot, lengths=None, sets=None, max_m: int = 6, options: BPOptions | None = None, seed: int = 0,
-               progress=None) -> CrosscheckResult:
+               progress=None, jobs: int | None = 1) -> CrosscheckResult:
     """Compare the solvers on every taut set of m = 1 .. min(n, 6, max_m) cables, or on the 0-based ``sets``.
-    ``progress(comparison, done, total)`` is called after each subproblem."""
-    rho, out, seconds = solve_each_taut_set(robot, lengths, max_m, sets,
-                                            lambda rho, c: compare_taut_set(robot, rho, c, options, seed), progress)
-    return CrosscheckResult(robot.name, rho, tuple(out), seconds)
+    ``progress(comparison, done, total)`` is called after each subproblem.  ``jobs`` > 1 (None: ``os.cpu_count()``):
+    the interval searches run ahead in that many threads (their compiled kernels release the GIL) while the
+    homotopy and the comparison run in the calling thread, in subproblem order (the homotopy's certificates change
+    the precision of the ball arithmetic, which is global), so the result does not depend on ``jobs``."""
+    jobs = os.cpu_count() if jobs is None else max(1, int(jobs))
+    if jobs == 1:
+        rho, out, seconds = solve_each_taut_set(robot, lengths, max_m, sets,
+                                                lambda rho, c: compare_taut_set(robot, rho, c, options, seed), progress)
+        return CrosscheckResult(robot.name, rho, tuple(out), seconds)
+    t0 = time.perf_counter()
+    rho, every_set = lengths_and_taut_sets(robot, lengths, max_m)
+    sets = every_set if sets is None else sets
+    with ThreadPoolExecutor(max_workers=jobs) as ex:
+        futures = [ex.submit(solve_taut_set_interval, robot, rho, c, options) for c in sets]
+        out = []
+        for k, (c, fut) in enumerate(zip(sets, futures)):
+            hres = _homotopy(robot, rho, c, seed)
+            out.append(compare_taut_set(robot, rho, c, options, seed, interval_result=fut.result(),
+                                        homotopy_result=hres))
+            if progress:
+                progress(out[-1], k + 1, len(sets))
+    return CrosscheckResult(robot.name, rho, tuple(out), time.perf_counter() - t0)
 
 
 def _fmt_solution(tag, s) -> str:
