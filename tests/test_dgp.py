@@ -214,19 +214,20 @@ def test_cli_json_contract(tmp_path, capsys):
     cap = capsys.readouterr()
     out = json.loads(cap.out)
     assert set(out) == {"status", "complete", "incomplete", "outcomes", "solutions", "subproblems", "seconds", "seed",
-                        "options"}
+                        "options", "admissible_complete", "settled"}
     assert out["status"] == "complete" and out["complete"] is True and out["incomplete"] == [] and out["seed"] == 0
+    assert out["admissible_complete"] is True and out["settled"] == []
     assert len(out["subproblems"]) == 3 and "[3/3]" in cap.err
     for sub in out["subproblems"]:
         assert set(sub) == {"taut", "status", "paths", "outcomes", "failures", "complete", "generic_count", "finite",
                             "real", "admissible", "failed_paths", "seconds", "skipped", "certified", "certified_real",
-                            "uncertified"}
+                            "uncertified", "settled", "admissible_complete"}
         assert sub["status"] == "complete"
         assert sum(sub["outcomes"].values()) == sub["paths"] == sub["generic_count"] and sub["complete"]
         assert sub["certified"] in (None, sub["outcomes"]["regular"]) and sub["uncertified"] == {}
     assert out["outcomes"] == {k: sum(s["outcomes"][k] for s in out["subproblems"]) for k in out["outcomes"]}
     keys = {"taut", "position", "angles", "rotation", "tensions", "hessian", "stable", "certified", "certificate",
-            "alternatives"}
+            "alternatives", "found_by"}
     assert out["solutions"]
     for sol in out["solutions"]:
         assert set(sol) == keys
