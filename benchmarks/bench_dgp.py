@@ -97,9 +97,57 @@ def phc_compare(path, cable_sets, repeat, timeout):
                   f"{res['regular']} regular, {res['real']} real; {zero} of them with a zero tension)", flush=True)
 
 
+PHASES = (("phase 1, t = 1 -> 0.1", "phase1"), ("re-tracks in the chart, t = 1 -> 0.1", "phase1_chart"),
+          ("finish t = 0.1 -> 0", "to0"), ("finish in the chart", "to0_chart"),
+          ("endgame samples", "samples"), ("endgame samples in the chart", "samples_chart"),
+          ("Cauchy loops", "loops"), ("Cauchy loops in the chart", "loops_chart"))
+
+
+class _PhaseCounter:
+    """Seconds, steps and calls of the compiled tracker per phase of the pipeline, told apart by the segment's ends
+    (t_a = 1: phase 1; t_b = 0: the finish; |t_a| = |t_b|: a Cauchy loop chord; else an endgame sample) and by
+    whether the homotopy is in a projective chart: wraps ``compiled.track_segment_compiled`` while in use."""
+
+    def __enter__(self):
+        import numpy as np
+
+        from cdpr_algebra.homotopy import compiled
+
+        self.acc = {}
+        self._mod, self._orig = compiled, compiled.track_segment_compiled
+
+        def counted(hom, x0, t_a, t_b, o, h0=None):
+            t0 = time.perf_counter()
+            r = self._orig(hom, x0, t_a, t_b, o, h0)
+            ta, tb = complex(np.atleast_1d(t_a)[0]), complex(np.atleast_1d(t_b)[0])
+            kind = ("phase1" if abs(ta - 1) < 1e-12 else "to0" if tb == 0
+                    else "loops" if abs(abs(ta) - abs(tb)) < 1e-12 else "samples")
+            if getattr(hom, "chart", None) is not None:
+                kind += "_chart"
+            sec, steps, calls = self.acc.get(kind, (0.0, 0, 0))
+            self.acc[kind] = (sec + time.perf_counter() - t0, steps + int(r.steps.sum()), calls + 1)
+            return r
+
+        compiled.track_segment_compiled = counted
+        return self
+
+    def __exit__(self, *exc):
+        self._mod.track_segment_compiled = self._orig
+
+    def lines(self, paths: int):
+        total = sum(v[1] for v in self.acc.values())
+        out = [f"  tracker by phase ({total} steps, {total / max(paths, 1):.0f} per path):"]
+        for label, key in PHASES:
+            if key in self.acc:
+                sec, steps, calls = self.acc[key]
+                out.append(f"    {label:38s} {sec:7.2f} s  {steps:9d} steps  {calls:6d} calls")
+        return out
+
+
 def profile_run(path, top: int = 12):
     """One serial run of every subproblem under cProfile (the threads of ``dgp`` hide from it): the profile's top
-    lines by own time, the five slowest subproblems and the path counters, so a change shows where time went."""
+    lines by own time, the five slowest subproblems, the path counters and the tracker's seconds and steps per
+    phase (:class:`_PhaseCounter`), so a change shows where time went."""
     import cProfile
     import io
     import pstats
@@ -112,9 +160,10 @@ def profile_run(path, top: int = 12):
     solve_taut_set(robot, rho, sets[-1])  # compile / load outside the profile
     prof = cProfile.Profile()
     t0 = time.perf_counter()
-    prof.enable()
-    subs = [solve_taut_set(robot, rho, c)[0] for c in sets]
-    prof.disable()
+    with _PhaseCounter() as phases:
+        prof.enable()
+        subs = [solve_taut_set(robot, rho, c)[0] for c in sets]
+        prof.disable()
     wall = time.perf_counter() - t0
     buf = io.StringIO()
     pstats.Stats(prof, stream=buf).sort_stats("tottime").print_stats(top)
@@ -131,6 +180,8 @@ def profile_run(path, top: int = 12):
     print(f"  counters: {len(subs)} subproblems, {paths} paths, {failed} failed, "
           f"{sum(s.outcomes.get('singular', 0) for s in subs)} singular, "
           f"{sum(s.outcomes.get('at_infinity', 0) for s in subs)} at infinity", flush=True)
+    for ln in phases.lines(paths):
+        print(ln)
 
 
 def main(argv=None):
