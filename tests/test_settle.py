@@ -101,3 +101,23 @@ def test_settle_same_whatever_the_number_of_threads(test1, failing):
     two, r2 = settle_incomplete(test1, broken, jobs=2)
     assert [(r.taut, r.outcome, r.detail) for r in r1] == [(r.taut, r.outcome, r.detail) for r in r2]
     assert json.dumps(one.to_dict()["solutions"]) == json.dumps(two.to_dict()["solutions"])
+
+
+def test_track_start_decided_by_a_settled_dgp(test1, normal, failing):
+    """The default start of ``track`` (the stable equilibrium of lowest potential) is undecided when the start DGP
+    is incomplete, and decided when that DGP's incomplete subproblems are settled: the same start as the complete
+    homotopy run's."""
+    from cdpr_algebra.comparison.settle import settle_incomplete
+    from cdpr_algebra.track.follow import start_equilibrium
+
+    rho = np.asarray(test1.lengths, dtype=float)
+    broken = failing.dgp(test1, jobs=1, certify=False)
+    settled, _ = settle_incomplete(test1, broken)
+    # the same solutions without the proof: undecided
+    _, info_unproven = start_equilibrium(test1, rho, 0.0, replace(broken, solutions=settled.solutions))
+    assert info_unproven["dgp_complete"] is False and "may be missing" in info_unproven["note"]
+    st, info = start_equilibrium(test1, rho, 0.0, settled)
+    ref, info_ref = start_equilibrium(test1, rho, 0.0, normal)
+    assert info["dgp_complete"] is True and "interval branch and prune" in info["note"]
+    assert info_ref["dgp_complete"] is True
+    assert np.max(np.abs(st.position - ref.position)) <= 1e-9 * test1.size

@@ -15,8 +15,9 @@ MP4 when ffmpeg is installed) with slack cables dashed.
 
 Exit status: 0 when the whole trajectory was followed; 3 when tracking stopped (the reason on stderr: a branch
 that ends at a singular wrench matrix, a fold with no landing found, ...) or when the default start is not proven
-(the DGP at the start lengths is incomplete, so a stable equilibrium of lower potential may be missing); 2 on bad
-input.
+(the DGP at the start lengths is incomplete, so a stable equilibrium of lower potential may be missing; ``--settle``
+proves the admissible equilibria of its incomplete subproblems by interval branch and prune, as ``cdpr dgp
+--settle`` does); 2 on bad input.
 """
 
 from __future__ import annotations
@@ -43,6 +44,9 @@ def add_parser(subparsers) -> None:
     p.add_argument("--range", nargs=2, default=["0", "1"], metavar=("T0", "T1"),
                    help="the range of t for --expressions (numbers or constants like pi/2; default 0 1)")
     p.add_argument("--steps", type=int, default=10, metavar="N", help="report states at N + 1 evenly spaced t")
+    p.add_argument("--settle", action="store_true",
+                   help="prove the admissible equilibria of the start DGP's incomplete subproblems by interval branch "
+                        "and prune, so that the default start (stable, lowest potential) is decided")
     p.add_argument("--start-position", nargs=3, type=finite("--start-position"), metavar=("X", "Y", "Z"),
                    help="start from the equilibrium at this pose (the platform frame's origin, as the DGP prints it; "
                         "within 1e-4 of the robot's size: it is polished); default: the DGP's stable equilibrium of "
@@ -93,6 +97,14 @@ def run(args) -> int:
 
         angles = np.zeros(3) if args.start_angles is None else np.array(args.start_angles)
         start = (np.array(args.start_position), matrix_from_angles(*(np.radians(angles) if args.degrees else angles)))
+    if args.settle and start is None:
+        from cdpr_algebra.comparison.settle import settle_incomplete
+        from cdpr_algebra.dgp.solve import dgp
+
+        rho0 = traj(samples[0])
+        start = dgp(robot, rho0, certify=False)
+        if not start.complete:
+            start, _ = settle_incomplete(robot, start, rho0)
     with as_flags({"start": "--start-position"}):
         res = track(robot, traj, samples, start=start)
     if args.json:

@@ -103,8 +103,12 @@ def _start_state(robot, rho, t0, start):
 
 def start_equilibrium(robot, rho, t0, start):
     """(state, how it was chosen: {"method", "dgp_complete", "stable_found"}).  The starting equilibrium: ``start`` (a TrackState, or a (position, rotation) pose within START_TOL of a
-    stable equilibrium, which Newton polishes) or the DGP's unique / lowest-potential stable equilibrium at rho."""
-    if start is not None and not isinstance(start, branch.TrackState):
+    stable equilibrium, which Newton polishes) or the DGP's unique / lowest-potential stable equilibrium at rho (the
+    DGP solved here, or ``start`` when it is the :class:`cdpr_algebra.dgp.solve.DGPResult` at rho); ``dgp_complete``:
+    every admissible equilibrium of that DGP is known (``DGPResult.admissible_complete``)."""
+    from cdpr_algebra.dgp.solve import DGPResult, dgp
+
+    if start is not None and not isinstance(start, (branch.TrackState, DGPResult)):
         from cdpr_algebra.model.pose import check_rotation
 
         from .jump import statics_lam
@@ -136,9 +140,8 @@ def start_equilibrium(robot, rho, t0, start):
         return st, {"method": "given pose", "dgp_complete": None, "stable_found": None}
     if isinstance(start, branch.TrackState):
         return start, {"method": "given state", "dgp_complete": None, "stable_found": None}
-    from cdpr_algebra.dgp.solve import dgp
-
-    res = dgp(robot, rho, certify=False)
+    # a DGPResult given as ``start`` is the DGP at the start lengths (e.g. settled by interval branch and prune)
+    res = start if isinstance(start, DGPResult) else dgp(robot, rho, certify=False)
     stable = [s for s in res.solutions if s.stable and 2 <= len(s.taut) <= 6]
     if not stable:
         raise CdprInputError("lengths", "no stable equilibrium with 2 to 6 taut cables at the start lengths: give a "
@@ -148,9 +151,15 @@ def start_equilibrium(robot, rho, t0, start):
     cables = tuple(c - 1 for c in s.taut)
     lam = s.tensions[list(cables)] / rho[list(cables)]
     x, ok, resid, _ = branch.newton(robot, cables, rho, branch.unknowns(s.position, s.rotation, lam))
-    info = {"method": "the DGP's stable equilibrium of lowest potential", "dgp_complete": bool(res.complete),
+    # what matters is that every admissible equilibrium is known (a complete DGP, or one whose incomplete
+    # subproblems were settled by interval branch and prune)
+    info = {"method": "the DGP's stable equilibrium of lowest potential", "dgp_complete": bool(res.admissible_complete),
             "stable_found": len(stable)}
-    if not res.complete:
+    settled = [s for s in res.incomplete if s.settled]
+    if settled and res.admissible_complete:
+        info["note"] = (f"the admissible equilibria of the {len(settled)} DGP subproblem(s) with failed paths were "
+                        "proven by interval branch and prune")
+    if not res.admissible_complete:
         info["note"] = (f"the DGP at the start lengths is incomplete ({len(res.incomplete)} subproblem(s)): a stable "
                         "equilibrium of lower potential may be missing, so the start is not proven")
     return branch.state(robot, cables, rho, x, t0, resid), info
@@ -248,7 +257,7 @@ def _advance(robot, traj, st, t1, events=True, counter=None):
 def track(robot, traj: LengthTrajectory, samples=None, start=None, max_events: int = 100) -> TrackResult:
     """Follow the equilibrium along ``traj`` (module doc); ``samples``: the t at which states are reported
     (default 11 evenly spaced); ``start``: a TrackState or (position, rotation), default the DGP's stable
-    equilibrium of lowest potential at rho(t_0)."""
+    equilibrium of lowest potential at rho(t_0) (or that of ``start`` when it is the DGPResult at rho(t_0))."""
     t0 = time.perf_counter()
     samples = np.linspace(traj.start, traj.end, 11) if samples is None else np.asarray(samples, dtype=float)
     if len(samples) < 1 or np.any(np.diff(samples) <= 0):
