@@ -16,6 +16,7 @@ EXPECTED = {  # public name -> the object's own module and name
     "solve_dgp": ("cdpr_algebra.dgp.solve", "dgp"),
     "certify": ("cdpr_algebra.certificates.equilibria", "certify_taut_root"),
     "crosscheck": ("cdpr_algebra.comparison.compare", "crosscheck"),
+    "settle_incomplete": ("cdpr_algebra.comparison.settle", "settle_incomplete"),
     "cable_configurations": ("cdpr_algebra.cc.configurations", "valid_configurations"),
     "robustness_radius": ("cdpr_algebra.cc.radii", "cc_radii"),
     "plot_equilibrium": ("cdpr_algebra.report.plot", "plot_equilibria"),
