@@ -121,3 +121,21 @@ def test_track_start_decided_by_a_settled_dgp(test1, normal, failing):
     assert info["dgp_complete"] is True and "interval branch and prune" in info["note"]
     assert info_ref["dgp_complete"] is True
     assert np.max(np.abs(st.position - ref.position)) <= 1e-9 * test1.size
+
+
+def test_settle_box_budget_leaves_subproblems_undecided(test1, failing, tmp_path, capsys):
+    """A budget too small to finish: the subproblem stays undecided (with the reason), nothing is settled, exit 3."""
+    from cdpr_algebra.bp.results import BPOptions
+    from cdpr_algebra.cli.main import main
+    from cdpr_algebra.comparison.settle import settle_incomplete
+
+    broken = failing.dgp(test1, jobs=1)
+    settled, records = settle_incomplete(test1, broken, options=BPOptions(max_boxes=1))
+    rec = {r.taut: r for r in records}
+    assert rec[(1, 2, 3)].outcome == "undecided" and "box budget exhausted" in rec[(1, 2, 3)].detail
+    assert settled.taut_set((1, 2, 3))[0].settled is None and not settled.admissible_complete
+    path = tmp_path / "t1.json"
+    path.write_text(json.dumps(test1.to_dict()))
+    assert main(["dgp", str(path), "--jobs", "1", "--settle", "--settle-max-boxes", "1"]) == 3
+    assert main(["dgp", str(path), "--settle", "--settle-max-boxes", "0"]) == 2
+    assert "--settle-max-boxes" in capsys.readouterr().err

@@ -25,6 +25,9 @@ def add_parser(subparsers) -> None:
                      help="run the interval branch and prune on every incomplete subproblem: where it is complete it "
                           "proves the subproblem's admissible equilibria (and adds any the homotopy missed); the exit "
                           "status is then 0 when every admissible equilibrium is known (seconds per subproblem)")
+    dgp.add_argument("--settle-max-boxes", type=int, default=None, metavar="N",
+                     help="with --settle: at most N boxes per subproblem (the rest are undecided; default 20 million: "
+                          "near-singular robots can take minutes per subproblem)")
     dgp.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
@@ -36,6 +39,8 @@ def run(args) -> int:
     lengths = dgp_lengths(args, robot)
     if args.jobs is not None and args.jobs < 1:
         raise CdprInputError("--jobs", f"expected a number >= 1, got {args.jobs}")
+    if args.settle_max_boxes is not None and args.settle_max_boxes < 1:
+        raise CdprInputError("--settle-max-boxes", f"expected a number >= 1, got {args.settle_max_boxes}")
 
     def progress(sub, done, total):
         o = sub.outcomes
@@ -61,7 +66,11 @@ def run(args) -> int:
                   + (f", {rec.added} equilibrium(s) the homotopy missed" if rec.added else "")
                   + f", {rec.seconds:.2f} s", file=sys.stderr, flush=True)
 
-        result, records = settle_incomplete(robot, result, lengths, progress=settle_progress, jobs=args.jobs)
+        from cdpr_algebra.bp.results import BPOptions
+
+        bp_options = None if args.settle_max_boxes is None else BPOptions(max_boxes=args.settle_max_boxes)
+        result, records = settle_incomplete(robot, result, lengths, bp_options, progress=settle_progress,
+                                            jobs=args.jobs)
     if args.json:
         out = result.to_dict()
         if args.settle:
