@@ -273,23 +273,17 @@ def crosscheck(robot, lengths=None, sets=None, max_m: int = 6, options: BPOption
     homotopy and the comparison run in the calling thread, in subproblem order (the homotopy's certificates change
     the precision of the ball arithmetic, which is global), so the result does not depend on ``jobs``."""
     jobs = os.cpu_count() if jobs is None else max(1, int(jobs))
-    if jobs == 1:
-        rho, out, seconds = solve_each_taut_set(robot, lengths, max_m, sets,
-                                                lambda rho, c: compare_taut_set(robot, rho, c, options, seed), progress)
-        return CrosscheckResult(robot.name, rho, tuple(out), seconds)
-    t0 = time.perf_counter()
     rho, every_set = lengths_and_taut_sets(robot, lengths, max_m)
     sets = every_set if sets is None else sets
     with ThreadPoolExecutor(max_workers=jobs) as ex:
-        futures = [ex.submit(solve_taut_set_interval, robot, rho, c, options) for c in sets]
-        out = []
-        for k, (c, fut) in enumerate(zip(sets, futures)):
-            hres = _homotopy(robot, rho, c, seed)
-            out.append(compare_taut_set(robot, rho, c, options, seed, interval_result=fut.result(),
-                                        homotopy_result=hres))
-            if progress:
-                progress(out[-1], k + 1, len(sets))
-    return CrosscheckResult(robot.name, rho, tuple(out), time.perf_counter() - t0)
+        ahead = {tuple(c): ex.submit(solve_taut_set_interval, robot, rho, c, options) for c in sets} if jobs > 1 else {}
+
+        def one(rho, c):
+            fut = ahead.get(tuple(c))
+            return compare_taut_set(robot, rho, c, options, seed, interval_result=None if fut is None else fut.result())
+
+        rho, out, seconds = solve_each_taut_set(robot, lengths, max_m, sets, one, progress)
+    return CrosscheckResult(robot.name, rho, tuple(out), seconds)
 
 
 def _fmt_solution(tag, s) -> str:
