@@ -51,7 +51,7 @@ from cdpr_algebra.bp.search import solve_taut_set_interval
 from cdpr_algebra.report.jsonable import jsonable
 
 __all__ = ["SubproblemComparison", "CrosscheckResult", "compare_taut_set", "crosscheck", "crosscheck_table",
-           "pruning_proof", "exit_status", "MATCH_TOL"]
+           "pruning_proof", "exit_status", "overall_status", "MATCH_TOL"]
 
 MATCH_TOL = 1e-6
 
@@ -116,8 +116,7 @@ class CrosscheckResult:
 
     @property
     def status(self) -> str:
-        """'disagree' if any subproblem disagrees, else 'not compared' if any was not compared, else 'agree'."""
-        return "disagree" if self.disagreements else ("not compared" if self.not_compared else "agree")
+        return overall_status(c.agree for c in self.comparisons)
 
     def to_dict(self) -> dict:
         return {"status": self.status, "robot": self.robot, "lengths": jsonable(self.lengths),
@@ -129,6 +128,15 @@ class CrosscheckResult:
                 "homotopy_admissible": sum(c.homotopy or 0 for c in self.comparisons),
                 "interval_admissible": sum(c.interval for c in self.comparisons),
                 "undecided": sum(c.undecided for c in self.comparisons)}
+
+
+def overall_status(agree) -> str:
+    """The verdict over subproblems from their ``agree`` (True, False or None): 'disagree' if any disagrees, else
+    'not compared' if any was not compared, else 'agree'."""
+    agree = list(agree)
+    if any(a is False for a in agree):
+        return "disagree"
+    return "not compared" if any(a is None for a in agree) else "agree"
 
 
 def exit_status(result: CrosscheckResult) -> int:

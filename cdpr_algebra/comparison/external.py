@@ -31,6 +31,8 @@ import numpy as np
 from cdpr_algebra.model.errors import CdprInputError
 from cdpr_algebra.report.jsonable import jsonable
 
+from .compare import overall_status
+
 BOX_SLACK = 1e-9  # relative to the robot's size: a point on a box face counts as inside
 
 
@@ -80,7 +82,7 @@ class ExternalResult:
 
     @property
     def status(self) -> str:
-        return "disagree" if self.disagreements else ("not compared" if self.not_compared else "agree")
+        return overall_status(c.agree for c in self.subproblems)
 
     def to_dict(self) -> dict:
         return {"robot": self.robot, "solver": self.solver, "lengths": jsonable(self.lengths), "status": self.status,
