@@ -28,7 +28,7 @@ import numpy as np
 
 from cdpr_algebra.bp.results import BPOptions
 from cdpr_algebra.bp.search import solve_taut_set_interval
-from cdpr_algebra.dgp.solve import DGPResult, equilibrium_from_pose
+from cdpr_algebra.dgp.solve import DGPResult, collected_solutions, equilibrium_from_pose
 from cdpr_algebra.report.jsonable import jsonable
 
 from .compare import _match
@@ -80,9 +80,9 @@ def settle_incomplete(robot, result: DGPResult, lengths=None, options: BPOptions
             records.append(rec)
             if progress:
                 progress(rec, k + 1, len(todo))
-    sols = list(result.solutions) + added_solutions
-    sols.sort(key=lambda s: (-len(s.taut), s.taut, tuple(np.round(s.position, 9))))
-    settled = replace(result, solutions=tuple(sols), subproblems=tuple(subs[tuple(s.taut)] for s in result.subproblems))
+    # the added equilibria join the others by the DGP's own rule (one per pose, same order)
+    sols = collected_solutions(list(result.solutions) + added_solutions, robot.size)
+    settled = replace(result, solutions=sols, subproblems=tuple(subs[tuple(s.taut)] for s in result.subproblems))
     return settled, tuple(records)
 
 

@@ -620,6 +620,14 @@ def _merge(solutions, L):
     return out
 
 
+def collected_solutions(solutions, L) -> tuple:
+    """The admissible solutions of several subproblems as a DGP reports them: one per pose (:func:`_merge`, ``L``
+    the robot's size), the most taut cables first, then by taut set and position."""
+    sols = _merge(list(solutions), L)
+    sols.sort(key=lambda s: (-len(s.taut), s.taut, tuple(np.round(s.position, 9))))
+    return tuple(sols)
+
+
 def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int = 6, seed: int = 0,
         certify: bool = True, options=None) -> "DGPResult":
     """Every admissible equilibrium of ``robot`` with cable ``lengths`` (default: the robot's).
@@ -663,9 +671,8 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
                 progress(results[c][0], done, len(sets))
     # the regular endpoints of every subproblem certified at once, one vectorized run per m
     subs = tuple(_with_endpoint_certificates(robot, rho, [(c, *results[c][::2]) for c in sets]))
-    sols = _merge([s for c in sets for s in results[c][1]], robot.size)
-    sols.sort(key=lambda s: (-len(s.taut), s.taut, tuple(np.round(s.position, 9))))
-    return DGPResult(tuple(sols), subs, time.perf_counter() - t0, seed, options)
+    sols = collected_solutions([s for c in sets for s in results[c][1]], robot.size)
+    return DGPResult(sols, subs, time.perf_counter() - t0, seed, options)
 
 
 def _certified_label(s) -> str:
