@@ -31,30 +31,28 @@ def _pow_to_mul(expr: sp.Expr) -> str:
     return Printer({"order": "none"}).doprint(expr)
 
 
-def function_source(name: str, args: list[sp.Symbol], outputs: list[sp.Expr], doc: str) -> str:
-    """Source of ``def name(*args): ...; return (outputs...)`` with common subexpressions shared (sympy.cse)."""
+def _cse_body(header: str, outputs: list[sp.Expr], doc: str) -> tuple[list[str], list]:
+    """(the lines ``header``, docstring and the common subexpressions of ``outputs`` (sympy.cse), the reduced
+    outputs): the start of every generated function."""
     for e in outputs:
         _check_integral(sp.sympify(e))
     subs, reduced = sp.cse([sp.sympify(e) for e in outputs], symbols=sp.numbered_symbols("t"), order="none")
-    lines = [f"def {name}({', '.join(str(a) for a in args)}):", f'    """{doc}"""']
-    for sym, val in subs:
-        lines.append(f"    {sym} = {_pow_to_mul(val)}")
-    body = ", ".join(_pow_to_mul(e) for e in reduced)
-    lines.append(f"    return ({body},)")
+    lines = [header, f'    """{doc}"""'] + [f"    {sym} = {_pow_to_mul(val)}" for sym, val in subs]
+    return lines, reduced
+
+
+def function_source(name: str, args: list[sp.Symbol], outputs: list[sp.Expr], doc: str) -> str:
+    """Source of ``def name(*args): ...; return (outputs...)`` with common subexpressions shared (sympy.cse)."""
+    lines, reduced = _cse_body(f"def {name}({', '.join(str(a) for a in args)}):", outputs, doc)
+    lines.append(f"    return ({', '.join(_pow_to_mul(e) for e in reduced)},)")
     return "\n".join(lines) + "\n"
 
 
 def function_into_source(name: str, args: list[sp.Symbol], outputs: list[sp.Expr], doc: str) -> str:
     """Source of ``def name(*args, out): ...`` writing output k into ``out[k]`` (common subexpressions shared): the
     form numba compiles into a loop over points without building a tuple per point."""
-    for e in outputs:
-        _check_integral(sp.sympify(e))
-    subs, reduced = sp.cse([sp.sympify(e) for e in outputs], symbols=sp.numbered_symbols("t"), order="none")
-    lines = [f"def {name}({', '.join(str(a) for a in args)}, out):", f'    """{doc}"""']
-    for sym, val in subs:
-        lines.append(f"    {sym} = {_pow_to_mul(val)}")
-    for k, e in enumerate(reduced):
-        lines.append(f"    out[{k}] = {_pow_to_mul(e)}")
+    lines, reduced = _cse_body(f"def {name}({', '.join(str(a) for a in args)}, out):", outputs, doc)
+    lines += [f"    out[{k}] = {_pow_to_mul(e)}" for k, e in enumerate(reduced)]
     return "\n".join(lines) + "\n"
 
 
