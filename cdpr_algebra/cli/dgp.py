@@ -59,14 +59,13 @@ def run(args) -> int:
     result = dgp(robot, lengths, jobs=args.jobs, progress=progress, options=options)
     records = ()
     if args.settle and not result.complete:
+        from cdpr_algebra.bp.results import BPOptions
         from cdpr_algebra.comparison.settle import settle_incomplete
 
         def settle_progress(rec, done, total):
             print(f"[settle {done}/{total}] taut {list(rec.taut)}: {rec.outcome}: {rec.detail}"
                   + (f", {rec.added} equilibrium(s) the homotopy missed" if rec.added else "")
                   + f", {rec.seconds:.2f} s", file=sys.stderr, flush=True)
-
-        from cdpr_algebra.bp.results import BPOptions
 
         bp_options = None if args.settle_max_boxes is None else BPOptions(max_boxes=args.settle_max_boxes)
         result, records = settle_incomplete(robot, result, lengths, bp_options, progress=settle_progress,

@@ -221,8 +221,8 @@ def certify_complex_roots(system, system_float, Z, scale, real_rtol: float = 1e-
     is_real = np.all(np.abs(Z.imag) <= real_rtol * (1 + np.abs(Z.real)), axis=1)
     finite = np.all(np.isfinite(Z), axis=1)
     Z0 = np.where(finite[:, None], np.where(is_real[:, None], Z.real + 0j, Z), 0.0)
-    Zn = np.concatenate([_complex_newton(system_float, Z0[c0:c0 + KRAWCZYK_CHUNK], 2, np.arange(c0, min(N, c0 + KRAWCZYK_CHUNK)))
-                         for c0 in range(0, N, KRAWCZYK_CHUNK)])
+    chunks = [np.arange(c0, min(N, c0 + KRAWCZYK_CHUNK)) for c0 in range(0, N, KRAWCZYK_CHUNK)]
+    Zn = np.concatenate([_complex_newton(system_float, Z0[rows], 2, rows) for rows in chunks])
     Y = np.hstack([Zn.real, np.where(is_real[:, None], 0.0, Zn.imag)])  # a real point stays real, rounding aside
     s = np.maximum(np.broadcast_to(np.asarray(scale, dtype=float), (n,)), np.abs(Y[:, :n] + 1j * Y[:, n:]))
     s = np.hstack([s, s])
