@@ -71,6 +71,9 @@ undecided as well (it is an equilibrium of a smaller taut set or a degenerate on
 
 
 Modules: :mod:`.model` (equation sets and search domain of one taut set), :mod:`.contractors` (filter operator,
-vectorized reference), :mod:`.kernels` (the same, compiled box by box), :mod:`.search` (branch and prune, every taut
-set), :mod:`.one_cable` (m = 1), :mod:`.results` (options and results).  Independent of :mod:`cdpr_algebra.dgp`.
+vectorized reference), :mod:`.kernels` (the same, compiled box by box), :mod:`.codac_filter` (the same on Codac 2's
+contractors, ``kernels="codac"``: 60-200 times slower, kept for the comparison), :mod:`.precondition` (the
+generalized inverse of eq. 37), :mod:`.search` (branch and prune, every taut set; :func:`.search.excluded_by_filter`,
+the short filter-only search by which the DGP excludes a taut set), :mod:`.one_cable` (m = 1), :mod:`.results`
+(options and results).  Independent of :mod:`cdpr_algebra.dgp`.
 """

@@ -8,6 +8,7 @@ from cdpr_algebra.intervals.arithmetic import Interval, inv_sqr, stack
 from cdpr_algebra.intervals.operators import midrad, mr_matmul
 from .kernels import _contract_kernel
 from .model import Model, _Box, _icross, _idot
+from .precondition import generalized_inverse
 from .results import BPOptions, _INF
 
 
@@ -197,7 +198,7 @@ def contract_statics_gauss(model: Model, box: _Box):
     h0 = model.st_h0[:nb]
     Bm = B.mid
     Jm = np.einsum("rmc,nmc->nrm", kc.mid, Bm) + k0.mid[None]  # (N, R0, m)
-    K = _generalized_inverse(Jm, model.st_weight, model.frame == "world")
+    K = generalized_inverse(Jm, model.st_weight, model.frame == "world")
     ok = np.all(np.isfinite(K), axis=(1, 2))
     K = np.where(ok[:, None, None], K, 0.0)
     # C_ji = sum_r K_jr k0_ri + sum_c (sum_r K_jr kc_ric) B_ic ; rhs_j = -(sum_r K_jr h0_r + sum_c (..) G_c)
@@ -237,45 +238,6 @@ def contract_statics_gauss(model: Model, box: _Box):
     box.hi[:, model.lam0:] = lam.hi
 
 
-def _cond(M):
-    """Condition numbers of a batch of square matrices (inf where not finite)."""
-    out = np.full(len(M), np.inf)
-    fin = np.all(np.isfinite(M), axis=(1, 2))
-    if fin.any():
-        try:
-            out[fin] = np.linalg.cond(M[fin])
-        except np.linalg.LinAlgError:
-            pass
-    return out
-
-
-def _generalized_inverse(Jm, weight, use_w: bool):
-    """K (N, m, R0): eq. 37 K = (W^T J)^-1 W^T (W: J with force and moment halves swapped) where well
-    conditioned, else the weighted pseudoinverse (J^T S J)^-1 J^T S, S = diag(weight)."""
-    N, R0, m = Jm.shape
-    K = np.full((N, m, R0), np.nan)
-    with np.errstate(all="ignore"):
-        todo = np.ones(N, bool)
-        if use_w and R0 == 6:
-            W = Jm[:, [3, 4, 5, 0, 1, 2], :]
-            M = np.einsum("nrj,nri->nji", W, Jm)
-            cond = _cond(M)
-            good = np.isfinite(cond) & (cond < 1e8)
-            if good.any():
-                K[good] = np.linalg.solve(M[good], np.swapaxes(W[good], 1, 2))
-            todo = ~good
-        if todo.any():
-            JS = np.swapaxes(Jm[todo], 1, 2) * weight[None, None, :]
-            M = JS @ Jm[todo]
-            cond = _cond(M)
-            good = np.isfinite(cond) & (cond < 1e12)
-            Kt = np.full((int(todo.sum()), m, R0), np.nan)
-            if good.any():
-                Kt[good] = np.linalg.solve(M[good], JS[good])
-            K[todo] = Kt
-    return K
-
-
 def _interval_gauss(C: Interval, b: Interval):
     """Interval Gauss elimination without pivoting for a batch of m x m systems; (x, ok)."""
     N, m, _ = C.lo.shape
@@ -304,7 +266,8 @@ def _interval_gauss(C: Interval, b: Interval):
 def contract(model: Model, lo, hi, opts: BPOptions):
     """Filter operator: all contractors, iterated; returns the surviving boxes.  ``opts.kernels == "compiled"``
     (default): box by box in compiled code (:func:`_contract_kernel`, contractors in the order ``opts.filter_order``);
-    "numpy": the vectorized contractors (:func:`contract_vectorized`)."""
+    "codac": Codac 2's contractors on the same constraints (:mod:`.codac_filter`); "numpy": the vectorized
+    contractors (:func:`contract_vectorized`)."""
     if opts.kernels == "compiled":
         lo = np.ascontiguousarray(lo, dtype=float)
         hi = np.ascontiguousarray(hi, dtype=float)
@@ -312,6 +275,9 @@ def contract(model: Model, lo, hi, opts: BPOptions):
         alive = _contract_kernel(lo, hi, model.core_cols.astype(np.int64), model.core_scale, int(opts.max_sweeps),
                                  float(opts.sweep_gain), rel, n_pt, use_n, sph, dst, chir, rows, gauss,
                                  "gauss" in opts.statics_rows, int(opts.filter_order))
+    elif opts.kernels == "codac":
+        from .codac_filter import codac_filter
+        alive = codac_filter(model, opts).contract(lo, hi)
     else:
         alive = contract_vectorized(model, lo, hi, opts)
     return lo[alive], hi[alive]

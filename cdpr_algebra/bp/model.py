@@ -108,10 +108,18 @@ class Model:
         self._layout()
         self._constants()
         self._filters()
-        lo, hi = self.initial_box()
-        c0 = 0.5 * (lo[0, self.core_cols] + hi[0, self.core_cols])
-        c0[self.h - self.m:] = 0.0
-        self.system = QuadraticSystem(self.residual, self.h, c0)  # every equation set is quadratic
+        self._system = None
+
+    @property
+    def system(self) -> QuadraticSystem:
+        """The equation set as a :class:`QuadraticSystem` (every equation set is quadratic) expanded about the
+        centre of the initial box, built on first use (a search that only excludes boxes never needs it)."""
+        if self._system is None:
+            lo, hi = self.initial_box()
+            c0 = 0.5 * (lo[0, self.core_cols] + hi[0, self.core_cols])
+            c0[self.h - self.m:] = 0.0
+            self._system = QuadraticSystem(self.residual, self.h, c0)
+        return self._system
 
     # -- frames ----------------------------------------------------------------------------------------------------
     def _frame_world(self):

@@ -91,7 +91,8 @@ def _branch_and_prune(model: Model, opts: BPOptions):
             w = (hi - lo)[:, core] / scale
             fin = np.flatnonzero(np.all(np.isfinite(w), axis=1))
             candidate = np.ones(len(lo), bool)  # boxes worth the unicity test
-            if opts.kernels == "compiled" and opts.bisection != "taylor" and len(fin):
+            if opts.taylor_iterations and opts.kernels in ("compiled", "codac") and opts.bisection != "taylor" \
+                    and len(fin):
                 Xl, Xh, exT, inT = model.system.taylor_contract(lo[np.ix_(fin, core)], hi[np.ix_(fin, core)], scale,
                                                                 opts.taylor_iterations, opts.sweep_gain)
                 if opts.unicity_gate:
@@ -238,6 +239,20 @@ def solve_taut_set_interval(robot, rho, cables, options: BPOptions | None = None
     solutions.sort(key=lambda s: tuple(np.round(s.position, 9)))
     return IntervalSubproblem(taut1, tuple(solutions), tuple(undecided), nboxes, nbis, inadmissible,
                               time.perf_counter() - t0, f"interval B&P, {model.frame} frame, l = {model.l}")
+
+
+def excluded_by_filter(robot, rho, cables, max_boxes: int = 64) -> int | None:
+    """A short branch and prune of the taut set ``cables`` (0-based, m >= 2; rho: all n lengths) with the filter
+    operator and bisection only (no second-order operator, no proofs): the number of boxes when it excluded every
+    box -- a proof that the set holds no admissible equilibrium (real, tensions >= 0, the other cables no longer
+    than their lengths) -- or None when boxes remain after ``max_boxes`` (or the set is skipped)."""
+    opts = BPOptions(max_boxes=max_boxes, taylor_iterations=0, krawczyk_width=0.0, newton_width=0.0)
+    try:
+        model = Model(robot, np.asarray(rho, dtype=float), tuple(sorted(cables)), opts.statics_rows)
+    except SkipSubproblem:
+        return None
+    proven, _, undecided, nboxes, _ = _branch_and_prune(model, opts)
+    return None if proven or undecided else nboxes
 
 
 def build_model(robot, rho, cables, options: BPOptions | None = None) -> Model:
