@@ -77,7 +77,7 @@ def test_dgp_endpoints_certified_and_accounted(test1):
     from cdpr_algebra.dgp.solve import solve_taut_set
 
     for cables in [(0, 1), (0, 1, 2)]:
-        sub, _ = solve_taut_set(test1, test1.lengths, cables, certify=False)
+        sub, _ = solve_taut_set(test1, test1.lengths, cables, certify=False, exclude=False)  # {1, 2} tracked
         assert sub.outcomes["failed"] == 0
         assert sub.certified == sub.outcomes["regular"] == sub.finite - sub.outcomes["singular"] > 0
         assert sub.certified_real == sub.real and sub.uncertified == {}

@@ -176,7 +176,7 @@ def test_comparison_reuses_a_dgp_run(test1):
     from cdpr_algebra.dgp.solve import dgp
     from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 
-    res = dgp(test1)
+    res = dgp(test1, exclude=False)  # every set tracked: the homotopy's own answer on each
     rho, sets = lengths_and_taut_sets(test1, None, 6)
     for c in sets:
         sub, sols = res.taut_set([i + 1 for i in c])
@@ -190,6 +190,11 @@ def test_comparison_reuses_a_dgp_run(test1):
     assert sum(len(res.taut_set([i + 1 for i in c])[1]) for c in sets) == len(res.solutions) > 0
     with pytest.raises(KeyError, match="not solved"):
         res.taut_set([1, 2, 3, 4])
+    # a set the DGP did not track because the interval filter excluded it is no homotopy answer: not compared
+    sub, sols = dgp(test1).taut_set([1, 2])
+    assert sub.excluded is not None and sub.paths == 0
+    a = compare_taut_set(test1, rho, (0, 1), homotopy_result=(sub, sols))
+    assert a.agree is None and "homotopy did not run" in a.compared
 
 
 def test_crosscheck_same_whatever_the_number_of_threads():

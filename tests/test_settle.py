@@ -44,7 +44,7 @@ def failing(monkeypatch):
 def test_settle_recovers_every_admissible_equilibrium(test1, normal, failing):
     from cdpr_algebra.comparison.settle import settle_incomplete
 
-    broken = failing.dgp(test1, jobs=1)
+    broken = failing.dgp(test1, jobs=1, exclude=False)  # the sets of no equilibrium tracked (and failed) too
     assert not broken.complete and not broken.admissible_complete and len(broken.solutions) == 0
     settled, records = settle_incomplete(test1, broken)
     assert len(records) == len(broken.incomplete) == 4  # [1, 2], [1, 3], [2, 3], [1, 2, 3]
@@ -69,7 +69,7 @@ def test_settle_never_settles_a_disagreement(test1, failing):
     from cdpr_algebra.comparison.settle import settle_incomplete
     from cdpr_algebra.dgp.solve import DGPSolution
 
-    broken = failing.dgp(test1, jobs=1, max_m=2)
+    broken = failing.dgp(test1, jobs=1, max_m=2, exclude=False)
     bogus = DGPSolution((1, 2), np.array([1.0, 1.0, 1.0]), np.eye(3), np.array([0.5, 0.5, 0.0]), ">")
     settled, records = settle_incomplete(test1, replace(broken, solutions=(bogus,)))
     rec = {r.taut: r for r in records}
@@ -89,14 +89,19 @@ def test_cli_settle_exit_status(test1, failing, tmp_path, capsys):
     cap = capsys.readouterr()
     out = json.loads(cap.out)
     assert out["complete"] is False and out["admissible_complete"] is True and len(out["solutions"]) == 6
-    assert [r["outcome"] for r in out["settle"]] == ["settled"] * 4
+    # [1, 2], [1, 3], [2, 3] are excluded by the interval filter before tracking; [1, 2, 3] fails and is settled
+    assert [r["outcome"] for r in out["settle"]] == ["settled"] and out["settled"] == [[1, 2, 3]]
+    assert [s["taut"] for s in out["subproblems"] if s["excluded"]] == [[1, 2], [1, 3], [2, 3]]
     assert "every admissible equilibrium is known" in cap.err
+    assert main(["dgp", str(path), "--jobs", "1", "--json", "--settle", "--track-all"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert [r["outcome"] for r in out["settle"]] == ["settled"] * 4 and len(out["solutions"]) == 6
 
 
 def test_settle_same_whatever_the_number_of_threads(test1, failing):
     from cdpr_algebra.comparison.settle import settle_incomplete
 
-    broken = failing.dgp(test1, jobs=1, max_m=2)
+    broken = failing.dgp(test1, jobs=1, max_m=2, exclude=False)
     one, r1 = settle_incomplete(test1, broken, jobs=1)
     two, r2 = settle_incomplete(test1, broken, jobs=2)
     assert [(r.taut, r.outcome, r.detail) for r in r1] == [(r.taut, r.outcome, r.detail) for r in r2]

@@ -28,6 +28,10 @@ def add_parser(subparsers) -> None:
     dgp.add_argument("--settle-max-boxes", type=int, default=None, metavar="N",
                      help="with --settle: at most N boxes per subproblem (the rest are undecided; default 20 million: "
                           "near-singular robots can take minutes per subproblem)")
+    dgp.add_argument("--track-all", action="store_true",
+                     help="track every taut set, also those the interval filter proves to hold no admissible "
+                          "equilibrium (by default they are not tracked: their real inadmissible and complex "
+                          "solutions are then not counted)")
     dgp.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
@@ -56,7 +60,7 @@ def run(args) -> int:
         from cdpr_algebra.dgp.solve import default_options
 
         options = replace(default_options(), retry_mpmath=True)
-    result = dgp(robot, lengths, jobs=args.jobs, progress=progress, options=options)
+    result = dgp(robot, lengths, jobs=args.jobs, progress=progress, options=options, exclude=not args.track_all)
     records = ()
     if args.settle and not result.complete:
         from cdpr_algebra.bp.results import BPOptions

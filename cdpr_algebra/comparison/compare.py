@@ -36,7 +36,6 @@ contains 0), so that subproblem is "not compared" with the undecided box listed,
 
 from __future__ import annotations
 
-import inspect
 import itertools
 import os
 import time
@@ -201,10 +200,9 @@ def _match(robot, taut, hsols, isols, tol=MATCH_TOL):
 def _homotopy(robot, rho, cables, seed):
     from cdpr_algebra.dgp.solve import solve_taut_set
 
-    kwargs = {"seed": seed}
-    if "certify" in inspect.signature(solve_taut_set).parameters:
-        kwargs["certify"] = False  # the comparison needs the solutions only
-    return solve_taut_set(robot, rho, cables, **kwargs)
+    # the comparison needs the solutions only (no certificates), and every set tracked: the interval exclusion
+    # test would put the other side's method into the homotopy's answer
+    return solve_taut_set(robot, rho, cables, seed=seed, certify=False, exclude=False)
 
 
 def _incompleteness(hsub):
@@ -260,8 +258,9 @@ def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed:
     hfailed = int(getattr(hsub, "failed_paths", 0) or 0)
     hflag = getattr(hsub, "complete", None)
     pruned = None
-    if hskip is not None and hskip.startswith("no stored generic solution set"):
-        hcount = None  # the homotopy cannot say
+    if hskip is not None and (hskip.startswith("no stored generic solution set")
+                              or getattr(hsub, "excluded", None) is not None):
+        hcount = None  # the homotopy cannot say (not tracked: no set stored, or excluded by the interval filter)
     elif hskip is not None:
         pruned = pruning_proof(robot, rho, cables)
     isub = interval_result if interval_result is not None else solve_taut_set_interval(robot, rho, cables, options)

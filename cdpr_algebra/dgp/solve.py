@@ -37,6 +37,17 @@ d_ij = |b_i' - b_j'|, every pair of cables needs D_ij <= rho_i + rho_j + d_ij (B
 rho_i, rho_j of A_i, A_j: taut or slack); two taut cables also need |rho_i - rho_j| <= D_ij + d_ij
 (B_i on the sphere (A_i, rho_i) must reach outside the ball (A_j, rho_j - d_ij)).
 
+**Exclusion by the interval filter** (``exclude=True``, the default; ``cdpr dgp --track-all`` turns it off): before
+a taut set of m >= 2 cables is tracked, a short interval branch and prune of it (:func:`cdpr_algebra.bp.search.excluded_by_filter`:
+the filter operator of seed 000 Sec. 4.3 and bisection, at most ``EXCLUSION_BOXES`` boxes, outward-rounded) tries to
+exclude every box of its domain: tensions >= 0 and the other cables no longer than rho_j (1 + 2 ``SLACK_TOL``), so
+that every solution the filtering below would admit lies in it (one with a tension in [-tol, 0) belongs to a
+smaller taut set by the deduplication rule).  When it does, the set provably holds no admissible equilibrium and is
+not tracked: ``skipped`` says so and ``excluded`` gives the boxes; its subproblem is ``complete`` (nothing
+admissible is missing) but its real inadmissible and complex solutions are not counted.  On seed 000 Test 2 it
+excludes 30 of the 57 sets of m >= 2 in at most 17 boxes each, among them the m = 3 sets whose paths fail near
+singular solutions at infinity.  ``crosscheck`` turns it off (the interval solver is the other side).
+
 **Filtering** of the finite endpoints (after two real Newton steps on the normalized system):
 real (imaginary parts <= 1e-6 in the normalized, unit-size coordinates); a proper rotation
 (|R^T R - I| <= 1e-6, det R > 0); tensions tau_i >= -tol with tol = 1e-9 Q; every other cable slack:
@@ -78,6 +89,7 @@ DATA = Path(__file__).resolve().parents[1] / "data"
 REAL_TOL = 1e-6
 SLACK_TOL = 1e-9
 TENSION_RTOL = 1e-9
+EXCLUSION_BOXES = 64  # box budget of the interval exclusion test run before tracking a taut set
 _GENERIC: dict = {}
 
 
@@ -149,7 +161,8 @@ class DGPSubproblem:
     to be distinct roots (real roots) by Krawczyk boxes that are pairwise disjoint (:func:`cdpr_algebra.certificates.equilibria.certify_endpoints`;
     None where no path was tracked), ``uncertified``: the others per reason; ``complete``: no path failed, the
     outcomes account for the generic count, and every regular endpoint is certified (or the set is proven empty by
-    pruning, or solved analytically)."""
+    pruning, or proven to hold no admissible equilibrium by the interval filter -- ``excluded``, not tracked, its
+    inadmissible solutions not counted -- or solved analytically)."""
 
     taut: tuple  # 1-based
     paths: int
@@ -166,6 +179,7 @@ class DGPSubproblem:
     certified_real: int | None = None  # of those, proven real
     uncertified: dict = field(default_factory=dict)  # regular endpoints not certified, per reason
     settled: str | None = None  # how the admissible set was proven complete although the homotopy's account is not
+    excluded: int | None = None  # boxes of the interval proof that the set holds no admissible equilibrium (not tracked)
 
     @property
     def admissible_complete(self) -> bool:
@@ -198,7 +212,7 @@ class DGPSubproblem:
                 "uncertified": dict(self.uncertified),
                 "finite": self.finite, "real": self.real, "admissible": self.admissible,
                 "failed_paths": self.failed_paths, "seconds": self.seconds, "skipped": self.skipped,
-                "settled": self.settled, "admissible_complete": self.admissible_complete}
+                "settled": self.settled, "admissible_complete": self.admissible_complete, "excluded": self.excluded}
 
 
 @dataclass(frozen=True)
@@ -455,11 +469,12 @@ def _track(m, target, seed, gamma, options=None):
     return res, sum(1 for p in res.track.paths if p.status in FAILURES)
 
 
-def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, options=None):
-    """(DGPSubproblem, [DGPSolution]) for the 0-based taut set ``cables`` (pruning, tracking, filtering, and
-    with ``certify`` an interval certificate for every admissible solution, :mod:`cdpr_algebra.certificates.equilibria`); ``options``: the
-    homotopy's :class:`.homotopy.endgame.SolveOptions` (default: those of the module doc)."""
-    sub, sols, Z = _solve_and_certify_solutions(robot, rho, cables, seed, certify, options)
+def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, options=None, exclude: bool = True):
+    """(DGPSubproblem, [DGPSolution]) for the 0-based taut set ``cables`` (pruning, ``exclude``: the interval
+    exclusion test, tracking, filtering, and with ``certify`` an interval certificate for every admissible solution,
+    :mod:`cdpr_algebra.certificates.equilibria`); ``options``: the homotopy's :class:`.homotopy.endgame.SolveOptions`
+    (default: those of the module doc)."""
+    sub, sols, Z = _solve_and_certify_solutions(robot, rho, cables, seed, certify, options, exclude)
     (sub,) = _with_endpoint_certificates(robot, rho, [(cables, sub, Z)])
     return sub, sols
 
@@ -488,13 +503,31 @@ def _certify_solutions(robot, rho, sols):
                                                  s.tensions[[t - 1 for t in s.taut]])) for s in sols]
 
 
-def _solve_and_certify_solutions(robot, rho, cables, seed, certify, options):
+def _solve_and_certify_solutions(robot, rho, cables, seed, certify, options, exclude):
     """:func:`_solve_taut_set` plus the certificates of its admissible solutions (endpoint certificates to come)."""
-    sub, sols, Z = _solve_taut_set(robot, rho, cables, seed, options)
+    sub, sols, Z = _solve_taut_set(robot, rho, cables, seed, options, exclude)
     return sub, _certify_solutions(robot, rho, sols) if certify else sols, Z
 
 
-def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None):
+def excluded_subproblem(robot, rho, cables) -> DGPSubproblem | None:
+    """The subproblem of the 0-based taut set ``cables`` (m >= 2) when the interval filter proves that it holds no
+    admissible equilibrium (see the module doc), else None."""
+    from cdpr_algebra.bp.search import excluded_by_filter
+
+    t0 = time.perf_counter()
+    rho_x = np.array(rho, dtype=float)
+    others = [j for j in range(robot.n) if j not in cables]
+    rho_x[others] *= 1 + 2 * SLACK_TOL
+    boxes = excluded_by_filter(robot, rho_x, cables, EXCLUSION_BOXES)
+    if boxes is None:
+        return None
+    return DGPSubproblem(tuple(c + 1 for c in cables), 0, 0, 0, 0, time.perf_counter() - t0,
+                         f"no admissible equilibrium: the interval filter excluded every box of its domain ({boxes} "
+                         "boxes); not tracked, its inadmissible solutions not counted", generic_count=0,
+                         excluded=boxes)
+
+
+def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bool = True):
     t0 = time.perf_counter()
     cables = tuple(cables)
     taut1 = tuple(c + 1 for c in cables)
@@ -504,6 +537,10 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None):
         return DGPSubproblem(taut1, 0, 0, 0, 0, time.perf_counter() - t0, reason, generic_count=0), [], None
     if m == 1:
         return (*_solve_one_cable(robot, rho, cables[0]), None)
+    if exclude:
+        sub = excluded_subproblem(robot, rho, cables)
+        if sub is not None:
+            return sub, [], None
     if not generic_path(m).exists():
         return DGPSubproblem(taut1, 0, 0, 0, 0, time.perf_counter() - t0,
                              f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})",
@@ -629,13 +666,14 @@ def collected_solutions(solutions, L) -> tuple:
 
 
 def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int = 6, seed: int = 0,
-        certify: bool = True, options=None) -> "DGPResult":
+        certify: bool = True, options=None, exclude: bool = True) -> "DGPResult":
     """Every admissible equilibrium of ``robot`` with cable ``lengths`` (default: the robot's).
 
     Subproblems: every taut set of m = 1 .. min(n, 6, max_m) cables, solved by ``jobs`` threads (default
     ``os.cpu_count()``; 1 = one after the other; the compiled tracker releases the GIL, so they track in
     parallel); ``progress(sub, done, total)`` is called in the calling thread after each finished subproblem; ``certify``: attach an interval certificate to every solution;
-    ``options``: the homotopy's :class:`.homotopy.endgame.SolveOptions` (default: those of the module doc).
+    ``options``: the homotopy's :class:`.homotopy.endgame.SolveOptions` (default: those of the module doc);
+    ``exclude``: the interval exclusion test before tracking a taut set (module doc; False tracks every set).
     """
     t0 = time.perf_counter()
     rho, sets = lengths_and_taut_sets(robot, lengths, max_m)
@@ -651,10 +689,10 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
         # threads: the compiled tracker releases the GIL, so subproblems track in parallel without the cost of
         # worker processes (start-up, pickling); the Python parts (endgame, filtering, certificates) interleave
         with ThreadPoolExecutor(max_workers=min(jobs, len(heavy))) as ex:
-            futs = {ex.submit(_solve_and_certify_solutions, robot, rho, c, seed, certify, options): c
+            futs = {ex.submit(_solve_and_certify_solutions, robot, rho, c, seed, certify, options, exclude): c
                     for c in sorted(heavy, key=lambda c: -len(c))}
             for c in light:
-                results[c] = _solve_and_certify_solutions(robot, rho, c, seed, certify, options)
+                results[c] = _solve_and_certify_solutions(robot, rho, c, seed, certify, options, exclude)
                 done += 1
                 if progress:
                     progress(results[c][0], done, len(sets))
@@ -665,7 +703,7 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
                     progress(results[futs[f]][0], done, len(sets))
     else:
         for c in sets:
-            results[c] = _solve_and_certify_solutions(robot, rho, c, seed, certify, options)
+            results[c] = _solve_and_certify_solutions(robot, rho, c, seed, certify, options, exclude)
             done += 1
             if progress:
                 progress(results[c][0], done, len(sets))
@@ -703,12 +741,20 @@ def dgp_table(result: DGPResult, n: int) -> str:
                          + " ".join(f"{v:.3f}" for v in a.tensions) + f", H_r {a.hessian}, certified {_certified_label(a)}")
     ms = sorted({len(s.taut) for s in result.subproblems})
     counts = ", ".join(f"{len(result.by_m(m))} with {m} taut" for m in reversed(ms))
-    skipped = sum(1 for s in result.subproblems if s.skipped)
+    skipped = sum(1 for s in result.subproblems if s.skipped and s.excluded is None)
+    excluded = sum(1 for s in result.subproblems if s.excluded is not None)
     ncert = sum(1 for s in result.solutions if s.certified)
     lines.append(f"{len(result.solutions)} admissible equilibria ({counts}), {len(result.stable)} stable, "
-                 f"{ncert} certified; {len(result.subproblems)} subproblems ({skipped} skipped); "
-                 f"{result.seconds:.2f} s")
+                 f"{ncert} certified; {len(result.subproblems)} subproblems ({skipped} skipped"
+                 + (f", {excluded} not tracked" if excluded else "") + f"); {result.seconds:.2f} s")
+    excluded = [s for s in result.subproblems if s.excluded is not None]
+    if excluded:
+        lines.append(f"  not tracked, {len(excluded)} taut set(s) the interval filter proves to hold no admissible "
+                     f"equilibrium (every box of the domain excluded; their inadmissible solutions not counted): "
+                     + ", ".join(str(list(s.taut)) for s in excluded))
     for s in result.subproblems:
+        if s.excluded is not None:
+            continue
         if s.skipped:
             lines.append(f"  skipped {list(s.taut)}: {s.skipped}")
         elif not s.complete:
@@ -730,10 +776,13 @@ def summary_line(result: DGPResult) -> str:
                     + ("; every admissible equilibrium known" if result.admissible_complete else ""))
     cert = sum(s.certified or 0 for s in subs)
     cert_real = sum(s.certified_real or 0 for s in subs)
+    excluded = sum(1 for s in subs if s.excluded is not None)
     return (f"paths {paths}: {o['regular']} regular, {o['singular']} singular, {o['at_infinity']} at infinity, "
             f"{o['failed']} failed; {sum(s.finite for s in subs)} finite ({cert} certified distinct roots, "
             f"{cert_real} of them proven real), {sum(s.real for s in subs)} real, "
-            f"{sum(s.admissible for s in subs)} admissible; {verdict}")
+            f"{sum(s.admissible for s in subs)} admissible"
+            + (f" ({excluded} taut set(s) not tracked: no admissible equilibrium, interval proof)" if excluded else "")
+            + f"; {verdict}")
 
 
 def incompleteness(sub: DGPSubproblem) -> str:
