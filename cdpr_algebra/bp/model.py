@@ -479,34 +479,38 @@ class Model:
             e[c] = 1.0
             return Interval(e, e)
 
+        A_taut = Interval(A.lo[list(self.cables)], A.hi[list(self.cables)])  # (m, 3): the rows over all cables at once
+
         def force_row(u):
             kc = [Interval(-u.hi, -u.lo) for _ in range(m)]
-            k0 = [_idot(a, u) for a in Ai]
-            return (kc, k0, Interval(np.zeros(3), np.zeros(3)), _idot(f, u), [True] * m)
+            k0 = _idot(A_taut, u)
+            return (kc, [k0[k] for k in range(m)], Interval(np.zeros(3), np.zeros(3)), _idot(f, u), [True] * m)
+
+        def moment_rows(Pt, U, inactive):
+            """The rows of the moments about the point Pt along each direction of U (r, 3)."""
+            WU = _icross(Interval(A_taut.lo[None], A_taut.hi[None]) - Pt, Interval(U.lo[:, None], U.hi[:, None]))
+            K0 = -_idot(Pt, WU)  # (r, m)
+            FU = _icross(f, U)  # (r, 3)
+            F0 = -_idot(Pt, FU)
+            return [([WU[j, k] for k in range(m)], [K0[j, k] for k in range(m)], FU[j], F0[j],
+                      [k not in inactive for k in range(m)]) for j in range(len(U.lo))]
 
         def moment_row(Pt, u, inactive):
-            kc, k0 = [], []
-            for a in Ai:
-                w = a - Pt
-                wu = _icross(w, u)
-                kc.append(wu)
-                k0.append(-_idot(Pt, wu))
-            fu = _icross(f, u)
-            return (kc, k0, fu, -_idot(Pt, fu), [k not in inactive for k in range(m)])
+            return moment_rows(Pt, Interval(u.lo[None], u.hi[None]), inactive)[0]
 
         P0 = Interval.point(self.P0)
         if self.frame == "planar":
             base = [force_row(unit(0)), force_row(unit(2)), moment_row(P0, unit(1), ())]
             extra = [moment_row(Ai[k], unit(1), (k,)) for k in range(m)]
         else:
-            base = [force_row(unit(c)) for c in range(3)] + [moment_row(P0, unit(c), ()) for c in range(3)]
+            base = [force_row(unit(c)) for c in range(3)] + moment_rows(P0, Interval(np.eye(3), np.eye(3)), ())
             extra = []
             dd = np.asarray(self.robot.load_direction, dtype=float)
             if np.count_nonzero(dd) > 1:
                 extra.append(force_row(Interval.point(dd)))
             if "poles" in self.statics_rows:
                 for k in range(m):
-                    extra += [moment_row(Ai[k], unit(c), (k,)) for c in range(3)]
+                    extra += moment_rows(Ai[k], Interval(np.eye(3), np.eye(3)), (k,))
             for k1, k2 in (itertools.combinations(range(m), 2) if "axes" in self.statics_rows else ()):
                 axis = Ai[k2] - Ai[k1]
                 inactive = tuple(k for k in range(m) if k in (k1, k2) or
