@@ -2,7 +2,10 @@
 generic sets for m = 4 .. 6 are stored, Test 3 (63 subproblems, target <= 10 s on 2 cores).
 
     python -m benchmarks.bench_dgp [--repeat 3] [--jobs N] [--no-test3] [--test2] [--profile] [--phc] [--phc-test3]
-                                   [--phc-timeout S]
+                                   [--phc-timeout S] [--track-all]
+
+``--track-all`` tracks every taut set (``dgp(exclude=False)``), also those the interval filter proves to hold no
+admissible equilibrium (by default they are not tracked; the summary counts them as "excluded").
 
 ``--profile`` adds, per test, one serial run under cProfile: its top lines by own time, the slowest subproblems and
 the path counters (issue 19: every change shows where the time went).
@@ -36,24 +39,26 @@ from cdpr_algebra.model.robot import load_robot  # noqa: E402
 from timing import machine  # noqa: E402
 
 
-def bench(path, repeat, jobs):
+def bench(path, repeat, jobs, exclude=True):
     robot = load_robot(path)
     t0 = time.perf_counter()
-    res = dgp(robot, jobs=jobs)
+    res = dgp(robot, jobs=jobs, exclude=exclude)
     first = time.perf_counter() - t0
     times = []
     for _ in range(repeat):
         t0 = time.perf_counter()
-        res = dgp(robot, jobs=jobs)
+        res = dgp(robot, jobs=jobs, exclude=exclude)
         times.append(time.perf_counter() - t0)
     counts = {m: len(res.by_m(m)) for m in range(1, 7)}
-    skipped = sum(1 for s in res.subproblems if s.skipped)
+    skipped = sum(1 for s in res.subproblems if s.skipped and s.excluded is None)
+    excluded = sum(1 for s in res.subproblems if s.excluded is not None)
     o = res.outcomes()
     paths = sum(s.paths for s in res.subproblems)
     print(f"{robot.name}: first run {first:.2f} s, median {statistics.median(times):.2f} s "
           f"(min {min(times):.2f}, max {max(times):.2f}, {repeat} runs) "
           f"(jobs={jobs}); {len(res.solutions)} admissible ({', '.join(f'm={m}: {c}' for m, c in counts.items() if c)}), "
-          f"{len(res.stable)} stable; {len(res.subproblems)} subproblems ({skipped} skipped, "
+          f"{len(res.stable)} stable; {len(res.subproblems)} subproblems ({skipped} skipped, {excluded} excluded "
+          f"by the interval filter, "
           f"{len(res.incomplete)} incomplete), {paths} paths: {o['regular']} regular, {o['singular']} singular, "
           f"{o['at_infinity']} at infinity, {o['failed']} failed; "
           f"{sum(s.certified or 0 for s in res.subproblems)} endpoints certified, "
@@ -144,7 +149,7 @@ class _PhaseCounter:
         return out
 
 
-def profile_run(path, top: int = 12):
+def profile_run(path, top: int = 12, exclude: bool = True):
     """One serial run of every subproblem under cProfile (the threads of ``dgp`` hide from it): the profile's top
     lines by own time, the five slowest subproblems, the path counters and the tracker's seconds and steps per
     phase (:class:`_PhaseCounter`), so a change shows where time went."""
@@ -162,7 +167,7 @@ def profile_run(path, top: int = 12):
     t0 = time.perf_counter()
     with _PhaseCounter() as phases:
         prof.enable()
-        subs = [solve_taut_set(robot, rho, c)[0] for c in sets]
+        subs = [solve_taut_set(robot, rho, c, exclude=exclude)[0] for c in sets]
         prof.disable()
     wall = time.perf_counter() - t0
     buf = io.StringIO()
@@ -195,22 +200,25 @@ def main(argv=None):
     ap.add_argument("--phc-timeout", type=float, default=1800.0)
     ap.add_argument("--profile", action="store_true", help="also one serial run of each test under cProfile: the "
                                                           "top lines, the slowest subproblems, path counters")
+    ap.add_argument("--track-all", action="store_true", help="track every taut set (no exclusion by the interval "
+                                                             "filter), as before the sixth session")
     args = ap.parse_args(argv)
+    ex = not args.track_all
     print(machine())
     print(f"stored generic sets: m = {available_m()}")
-    bench(ROOT / "examples" / "seed000_test1.toml", args.repeat, args.jobs)
+    bench(ROOT / "examples" / "seed000_test1.toml", args.repeat, args.jobs, ex)
     if args.profile:
-        profile_run(ROOT / "examples" / "seed000_test1.toml")
+        profile_run(ROOT / "examples" / "seed000_test1.toml", exclude=ex)
     if args.test2:
-        bench(ROOT / "examples" / "seed000_test2.toml", args.repeat, args.jobs)
+        bench(ROOT / "examples" / "seed000_test2.toml", args.repeat, args.jobs, ex)
         if args.profile:
-            profile_run(ROOT / "examples" / "seed000_test2.toml")
+            profile_run(ROOT / "examples" / "seed000_test2.toml", exclude=ex)
     if args.no_test3:
         print("Test 3: not run (--no-test3)")
     elif {4, 5, 6} <= set(available_m()):
-        bench(ROOT / "examples" / "seed000_test3.toml", args.repeat, args.jobs)
+        bench(ROOT / "examples" / "seed000_test3.toml", args.repeat, args.jobs, ex)
         if args.profile:
-            profile_run(ROOT / "examples" / "seed000_test3.toml")
+            profile_run(ROOT / "examples" / "seed000_test3.toml", exclude=ex)
     else:
         print("Test 3: skipped (generic sets for m = 4, 5, 6 not all stored)")
     if args.phc:
