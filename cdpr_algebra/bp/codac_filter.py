@@ -13,12 +13,26 @@ constraints as :mod:`.kernels`, handed to Codac's contractors instead of our han
 
 Codac's contractors work box by box on ``IntervalVector``; this module loops over a batch in Python (a few
 microseconds of overhead per call).  Every constant is an outward-rounded interval of the model (exact fractions
-rounded out), so the contraction is rigorous.  Selected by ``BPOptions(kernels="codac")``; the rest of the
+rounded out), so the contraction is rigorous.
+
+**Rounding mode.**  Importing Codac switches the processor's rounding mode to upward and leaves it there: its
+interval arithmetic relies on that global mode (in round-to-nearest its 1 / 3 is a point interval that misses
+1 / 3), while ours, and every floating-point computation of the package, assumes round-to-nearest (measured: after
+``import codac``, numpy's 1 / 3 is 0.33333333333333337).  So Codac is imported only here (:func:`_codac`), the
+mode is put back right after the import, and every use of Codac runs inside :func:`codac_rounding`, which sets
+Codac's mode and restores the caller's (the mode is per thread).  Selected by ``BPOptions(kernels="codac")``; the rest of the
 branch and prune (second-order operator, Krawczyk proofs, bisection) is unchanged, so the two engines are compared
 on the filter alone.  Codac is an optional dependency (``pip install codac``).
 """
 
 from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import importlib
+import platform
+import sys
+from contextlib import contextmanager
 
 import numpy as np
 from .model import Model
@@ -26,12 +40,39 @@ from .precondition import generalized_inverse
 from .results import BPOptions
 
 
+_LIBM = ctypes.CDLL(ctypes.util.find_library("m"))
+_FE_UPWARD = {"x86_64": 0x800, "AMD64": 0x800, "aarch64": 0x400000, "arm64": 0x400000}
+_CODAC_MODE = None  # the rounding mode Codac's arithmetic needs (measured at its import)
+
+
 def _codac():
+    """The codac module, imported with the caller's rounding mode put back (module doc)."""
+    global _CODAC_MODE
+    if _CODAC_MODE is None:
+        fresh = "codac" not in sys.modules
+        mode = _LIBM.fegetround()
+        try:
+            importlib.import_module("codac")
+        except ImportError as exc:  # optional dependency
+            raise RuntimeError("the Codac filter engine needs Codac 2: pip install codac") from exc
+        if fresh:
+            _CODAC_MODE = _LIBM.fegetround()
+            _LIBM.fesetround(mode)
+        else:  # imported before, elsewhere: its mode is upward rounding
+            _CODAC_MODE = _FE_UPWARD.get(platform.machine(), 0x800)
+    return sys.modules["codac"]
+
+
+@contextmanager
+def codac_rounding():
+    """Run the block in Codac's rounding mode (upward), then restore the caller's."""
+    _codac()
+    mode = _LIBM.fegetround()
+    _LIBM.fesetround(_CODAC_MODE)
     try:
-        import codac
-    except ImportError as exc:  # optional dependency
-        raise RuntimeError("the Codac filter engine needs Codac 2: pip install codac") from exc
-    return codac
+        yield
+    finally:
+        _LIBM.fesetround(mode)
 
 
 def _const(codac, lo, hi):
@@ -44,6 +85,10 @@ class CodacFilter:
     """Codac's contractors for one :class:`Model` (built once per model, :func:`codac_filter`)."""
 
     def __init__(self, model: Model, opts: BPOptions):
+        with codac_rounding():
+            self._build(model, opts)
+
+    def _build(self, model: Model, opts: BPOptions):
         codac = _codac()
         self.codac = codac
         self.model = model
@@ -189,29 +234,31 @@ class CodacFilter:
         codac = self.codac
         alive = np.ones(len(lo), bool)
         boxes = []
-        for k in range(len(lo)):
-            X = codac.IntervalVector(np.stack([lo[k], hi[k]], axis=1).tolist())
-            self.geometric.contract(X)
-            if not X.is_empty():
-                self.statics.contract(X)
-            if X.is_empty():
-                alive[k] = False
-                continue
-            lo[k] = np.array(X.lb())
-            hi[k] = np.array(X.ub())
-            boxes.append((k, X))
-        if self.gauss and boxes:
-            idx = np.array([k for k, _ in boxes])
-            with np.errstate(all="ignore"):
-                Ks = self._preconditioners(lo[idx], hi[idx])
-            for (k, X), K in zip(boxes, Ks):
-                if not np.all(np.isfinite(K)):
-                    continue
-                if not self._contract_gauss(X, K):
+        with codac_rounding():
+            for k in range(len(lo)):
+                X = codac.IntervalVector(np.stack([lo[k], hi[k]], axis=1).tolist())
+                self.geometric.contract(X)
+                if not X.is_empty():
+                    self.statics.contract(X)
+                if X.is_empty():
                     alive[k] = False
                     continue
                 lo[k] = np.array(X.lb())
                 hi[k] = np.array(X.ub())
+                boxes.append((k, X))
+        if self.gauss and boxes:
+            idx = np.array([k for k, _ in boxes])
+            with np.errstate(all="ignore"):
+                Ks = self._preconditioners(lo[idx], hi[idx])  # floating point, round-to-nearest
+            with codac_rounding():
+                for (k, X), K in zip(boxes, Ks):
+                    if not np.all(np.isfinite(K)):
+                        continue
+                    if not self._contract_gauss(X, K):
+                        alive[k] = False
+                        continue
+                    lo[k] = np.array(X.lb())
+                    hi[k] = np.array(X.ub())
         lo[~alive, 0] = np.inf
         return alive
 
