@@ -25,7 +25,8 @@ def test_failed_path_is_tracked_in_arbitrary_precision(monkeypatch):
     robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
     rho, _ = lengths_and_taut_sets(robot)
     cables = (0, 2)
-    sub0, sols0 = solve_taut_set(robot, rho, cables, certify=False)
+    sub0, sols0 = solve_taut_set(robot, rho, cables, certify=False, exclude=False)  # tracked, though excluded
+    assert sub0.paths == 24
     assert sub0.failed_paths == 0
     _, X = _generic(2)
     real_segment = eg.track_segment
@@ -49,7 +50,8 @@ def test_failed_path_is_tracked_in_arbitrary_precision(monkeypatch):
 
     monkeypatch.setattr(eg, "track_segment", failing)
     monkeypatch.setattr(eg, "mp_track", counting_mp)  # the arbitrary-precision tracker behind eg.mp_path
-    sub, sols = solve_taut_set(robot, rho, cables, certify=False, options=replace(default_options(), retry_mpmath=True))
+    sub, sols = solve_taut_set(robot, rho, cables, certify=False, options=replace(default_options(), retry_mpmath=True),
+                               exclude=False)
     assert calls["mp"] == 1  # the one path, once
     assert sub.failed_paths == 0 and sub.finite == sub0.finite and sub.real == sub0.real
     assert len(sols) == len(sols0)
