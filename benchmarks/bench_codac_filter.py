@@ -2,6 +2,7 @@
 both engines on seed 000 Tests 1-3, subproblem by subproblem, with the same counts required.
 
     python -m benchmarks.bench_codac_filter [--tests 1 2 3] [--engines compiled codac] [--save FILE] [--part K/N]
+                                            [--taut C1,C2,.. ...]
 
 For every test and engine: wall time, boxes, admissible equilibria and undecided boxes, per m and in all; then,
 subproblem by subproblem, whether the two engines found the same admissible equilibria (same count, each
@@ -61,6 +62,7 @@ def main(argv=None) -> int:
     ap.add_argument("--engines", nargs="+", default=["compiled", "codac"], choices=["compiled", "codac", "numpy"])
     ap.add_argument("--save", help="write the per-subproblem records (JSON)")
     ap.add_argument("--part", default="0/1", help="K/N: only the subproblems whose index is K modulo N")
+    ap.add_argument("--taut", nargs="+", metavar="C1,C2,..", help="only these taut sets (cables from 1)")
     args = ap.parse_args(argv)
     print(machine(), flush=True)
     records, ok = {}, True
@@ -70,6 +72,8 @@ def main(argv=None) -> int:
         sets = None
         if n > 1:
             sets = [c for i, c in enumerate(lengths_and_taut_sets(robot)[1]) if i % n == k]
+        if args.taut:
+            sets = [tuple(sorted(int(c) - 1 for c in t.split(","))) for t in args.taut]
         results = {}
         for engine in args.engines:
             res, seconds = _run(robot, engine, sets)
