@@ -9,7 +9,7 @@ constraints as :mod:`.kernels`, handed to Codac's contractors instead of our han
   about P0, about each taut exit point and each axis A_j A_k; cables dropping out of a row are left out);
 * the interval Gauss elimination of K J(B) lam = -K h(G) (eqs. 34-37) with :class:`codac.CtcGaussElim` and one
   :class:`codac.CtcGaussSeidel` step; K is the generalized inverse of eq. 37 at the box centre
-  (:func:`.precondition.generalized_inverse`), K J(B) formed with Codac's interval matrices, each anchor once.
+  (:meth:`.model.Model.statics_preconditioners`), K J(B) formed with Codac's interval matrices, each anchor once.
 
 Codac's contractors work box by box on ``IntervalVector``; this module loops over a batch in Python (a few
 microseconds of overhead per call).  Every constant is an outward-rounded interval of the model (exact fractions
@@ -35,8 +35,7 @@ import sys
 from contextlib import contextmanager
 
 import numpy as np
-from .model import Model
-from .precondition import generalized_inverse
+from .model import Model, _cross_list
 from .results import BPOptions
 
 
@@ -104,9 +103,6 @@ class CodacFilter:
         def dot(a, b):
             return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
-        def cross(a, b):
-            return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-
         exprs, ranges = [], []
         # spheres and the inequalities of eqs. 31-32: |P - A_j|^2 in [r2lo, r2hi]
         for k, p in enumerate(model.sp_pt):
@@ -135,14 +131,14 @@ class CodacFilter:
             r0, r1, r2 = pt(0), pt(1), pt(2)
             u, w = sub(r1, r0), sub(r2, r0)
             nv = pt(model.n_pt)
-            for c, e in enumerate(cross(u, w)):
+            for c, e in enumerate(_cross_list(u, w)):
                 exprs.append(nv[c] - e)
                 ranges.append([0.0, 0.0])
             exprs += [dot(nv, u), dot(nv, w)]
             ranges += [[0.0, 0.0], [0.0, 0.0]]
         if model.chirality is not None:
             r = [pt(p) for p in range(4)]
-            exprs.append(dot(sub(r[1], r[0]), cross(sub(r[2], r[0]), sub(r[3], r[0]))))
+            exprs.append(dot(sub(r[1], r[0]), _cross_list(sub(r[2], r[0]), sub(r[3], r[0]))))
             ranges.append([float(model.det_ref.lo), float(model.det_ref.hi)])
         self.geometric = codac.CtcFixpoint(self._hc4(exprs, ranges), opts.sweep_gain)
         # statics rows
@@ -181,8 +177,6 @@ class CodacFilter:
         self.h0 = codac.IntervalVector([[float(h0.lo[r]), float(h0.hi[r])] for r in range(nb)])
         self.hc = codac.IntervalMatrix([[codac.Interval(float(hc.lo[r, c]), float(hc.hi[r, c])) for c in range(3)]
                                         for r in range(nb)])
-        self.kc_mid = model.st_kc.mid[:nb]
-        self.k0_mid = model.st_k0.mid[:nb]
         self.b_cols = [[3 * int(p) + c for c in range(3)] for p in model.taut_pts]
         self.g_cols = [3 * int(model.G_pt) + c for c in range(3)]
         self.elim = codac.CtcGaussElim()
@@ -220,14 +214,6 @@ class CodacFilter:
         X.put(model.lam0, lam)
         return True
 
-    def _preconditioners(self, lo, hi):
-        """K (N, m, R0) of eq. 37 at the centres of the boxes (NaN where J is too ill-conditioned)."""
-        model = self.model
-        mid = 0.5 * lo + 0.5 * hi
-        Bmid = mid[:, np.asarray(self.b_cols)]  # (N, m, 3)
-        Jm = np.einsum("rmc,nmc->nrm", self.kc_mid, Bmid) + self.k0_mid[None]
-        return generalized_inverse(Jm, model.st_weight, model.frame == "world")
-
     def contract(self, lo, hi):
         """The filter on every box (rows of lo, hi), in place; returns alive (N,) bool: the geometric and statics
         rows box by box, then (``gauss``) the elimination with K at the centres of the contracted boxes."""
@@ -249,7 +235,8 @@ class CodacFilter:
         if self.gauss and boxes:
             idx = np.array([k for k, _ in boxes])
             with np.errstate(all="ignore"):
-                Ks = self._preconditioners(lo[idx], hi[idx])  # floating point, round-to-nearest
+                mid = 0.5 * lo[idx] + 0.5 * hi[idx]
+                Ks = self.model.statics_preconditioners(mid[:, np.asarray(self.b_cols)])  # round-to-nearest
             with codac_rounding():
                 for (k, X), K in zip(boxes, Ks):
                     if not np.all(np.isfinite(K)):

@@ -8,7 +8,6 @@ from cdpr_algebra.intervals.arithmetic import Interval, inv_sqr, stack
 from cdpr_algebra.intervals.operators import midrad, mr_matmul
 from .kernels import _contract_kernel
 from .model import Model, _Box, _icross, _idot
-from .precondition import generalized_inverse
 from .results import BPOptions, _INF
 
 
@@ -196,9 +195,7 @@ def contract_statics_gauss(model: Model, box: _Box):
     k0 = model.st_k0[:nb]
     hc = model.st_hc[:nb]
     h0 = model.st_h0[:nb]
-    Bm = B.mid
-    Jm = np.einsum("rmc,nmc->nrm", kc.mid, Bm) + k0.mid[None]  # (N, R0, m)
-    K = generalized_inverse(Jm, model.st_weight, model.frame == "world")
+    K = model.statics_preconditioners(B.mid)
     ok = np.all(np.isfinite(K), axis=(1, 2))
     K = np.where(ok[:, None, None], K, 0.0)
     # C_ji = sum_r K_jr k0_ri + sum_c (sum_r K_jr kc_ric) B_ic ; rhs_j = -(sum_r K_jr h0_r + sum_c (..) G_c)

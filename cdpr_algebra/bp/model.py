@@ -9,6 +9,7 @@ import numpy as np
 from cdpr_algebra.intervals.arithmetic import Interval, enclose_fraction, sq, stack, up
 from cdpr_algebra.intervals.scalar_kernels import rounding_gamma
 from cdpr_algebra.intervals.operators import QuadraticSystem, midrad
+from .precondition import generalized_inverse
 from .results import _INF
 
 
@@ -555,6 +556,13 @@ class Model:
             self.st_weight = np.array([1.0, 1.0, 1.0 / self.L ** 2])
         else:
             self.st_weight = np.array([1.0] * 3 + [1.0 / self.L ** 2] * 3)
+
+    def statics_preconditioners(self, Bmid):
+        """K (N, m, R0) of eq. 37 (:func:`.precondition.generalized_inverse`) for the base statics rows with J
+        evaluated at the anchor points Bmid (N, m, 3) (the box centres); NaN where J is too ill-conditioned."""
+        nb = self.nbase
+        Jm = np.einsum("rmc,nmc->nrm", self.st_kc.mid[:nb], Bmid) + self.st_k0.mid[:nb][None]  # (N, R0, m)
+        return generalized_inverse(Jm, self.st_weight, self.frame == "world")
 
     def compiled_data(self):
         """The model's contractor data as flat arrays for :func:`_contract_kernel` (built once, on first use)."""
