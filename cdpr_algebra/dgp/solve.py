@@ -741,13 +741,12 @@ def dgp_table(result: DGPResult, n: int) -> str:
                          + " ".join(f"{v:.3f}" for v in a.tensions) + f", H_r {a.hessian}, certified {_certified_label(a)}")
     ms = sorted({len(s.taut) for s in result.subproblems})
     counts = ", ".join(f"{len(result.by_m(m))} with {m} taut" for m in reversed(ms))
-    skipped = sum(1 for s in result.subproblems if s.skipped and s.excluded is None)
-    excluded = sum(1 for s in result.subproblems if s.excluded is not None)
+    excluded = [s for s in result.subproblems if s.excluded is not None]
+    skipped = sum(1 for s in result.subproblems if s.skipped) - len(excluded)
     ncert = sum(1 for s in result.solutions if s.certified)
     lines.append(f"{len(result.solutions)} admissible equilibria ({counts}), {len(result.stable)} stable, "
                  f"{ncert} certified; {len(result.subproblems)} subproblems ({skipped} skipped"
-                 + (f", {excluded} not tracked" if excluded else "") + f"); {result.seconds:.2f} s")
-    excluded = [s for s in result.subproblems if s.excluded is not None]
+                 + (f", {len(excluded)} not tracked" if excluded else "") + f"); {result.seconds:.2f} s")
     if excluded:
         lines.append(f"  not tracked, {len(excluded)} taut set(s) the interval filter proves to hold no admissible "
                      f"equilibrium (every box of the domain excluded; their inadmissible solutions not counted): "
