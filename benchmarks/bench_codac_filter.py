@@ -28,6 +28,7 @@ sys.path[:0] = [str(ROOT / "benchmarks"), str(ROOT)]
 
 from cdpr_algebra.bp.results import BPOptions  # noqa: E402
 from cdpr_algebra.bp.search import interval_dgp  # noqa: E402
+from cdpr_algebra.comparison.compare import _match  # noqa: E402
 from cdpr_algebra.model.robot import load_robot  # noqa: E402
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets  # noqa: E402
 from timing import machine  # noqa: E402
@@ -43,17 +44,16 @@ def _run(robot, engine: str, sets=None):
     return res, time.perf_counter() - t0
 
 
-def _same(a, b) -> bool:
-    """Same admissible equilibria: equal counts, no undecided box, each enclosure of a meets one of b's."""
+def _same(robot, a, b) -> bool:
+    """Same admissible equilibria: equal counts, no undecided box, each enclosure of a meets one of b's (m >= 2);
+    m = 1 solutions carry no enclosure (the platform turns about the cable): matched one to one by the
+    cross-check's rule (B_i and G, :func:`cdpr_algebra.comparison.compare._match`)."""
     if len(a.undecided) or len(b.undecided) or a.admissible != b.admissible:
         return False
-    for s in a.solutions:
-        if not any(len(t.enclosure_lo) == len(s.enclosure_lo) and np.all(s.enclosure_lo <= t.enclosure_hi)
-                   and np.all(t.enclosure_lo <= s.enclosure_hi) for t in b.solutions):
-            # m = 1 solutions carry no enclosure: compare positions
-            if not any(np.allclose(s.position, t.position, atol=1e-6 * 1.0) for t in b.solutions):
-                return False
-    return True
+    if len(a.taut) == 1:
+        return not any(_match(robot, a.taut, a.solutions, b.solutions))
+    return all(any(np.all(s.enclosure_lo <= t.enclosure_hi) and np.all(t.enclosure_lo <= s.enclosure_hi)
+                   for t in b.solutions) for s in a.solutions)
 
 
 def main(argv=None) -> int:
@@ -95,7 +95,7 @@ def main(argv=None) -> int:
         names = list(results)
         for e in names[1:]:
             a, b = results[names[0]], results[e]
-            differ = [list(x.taut) for x, y in zip(a.subproblems, b.subproblems) if not _same(x, y)]
+            differ = [list(x.taut) for x, y in zip(a.subproblems, b.subproblems) if not _same(robot, x, y)]
             ta = sum(s.seconds for s in a.subproblems)
             tb = sum(s.seconds for s in b.subproblems)
             ba = sum(s.boxes for s in a.subproblems)
