@@ -124,14 +124,18 @@ def _move_stored(m, p_from, X, p_to, seed, runs=4):
 
 
 POSE = list(range(12))  # p, u, v, w: the tensions lam_i follow linearly from the pose (and have poles on the curve)
+COORDINATES = {"pose": POSE, "all": None}
 
 
 def trace_options():
     """The trace test's settings for the DGP sets: the W10 monodromy tracks with predictor tolerance 1e-4 (every
     point it adds is refined by Newton, so a coarser step only risks missing points, which the trace would show);
-    the pencil paths with the engine's defaults."""
+    the pencil paths with the engine's defaults, to tau = +-gamma (eps = 1): the trace's rounding noise does not grow
+    with eps, while a single point's relative second difference grows like eps (m = 5, the same W10: at eps = 0.1,
+    1.07e-11 against a smallest single-point signal of 1.6e-9, below the 1e-8 tolerance; at eps = 1, 1.5e-12
+    against 1.6e-8).  The m = 2, 3, 6 certificates were made at eps = 0.1 (recorded in their options)."""
     return TraceTestOptions(solve=SolveOptions(tracker=TrackerOptions(predictor_tol=1e-4), retry_mpmath=False),
-                            witness_loops_no_progress=5, confirm_loops_no_progress=3, confirmations=2)
+                            witness_loops_no_progress=5, confirm_loops_no_progress=3, confirmations=2, eps=1.0)
 
 
 def run_trace_test(m, p, X, seed, coordinates, verbose=True, start=None):
@@ -148,7 +152,8 @@ def run_trace_test(m, p, X, seed, coordinates, verbose=True, start=None):
            "W10_count": int(len(res.W10)), "W10": _c(res.W10), "witnesses": res.witnesses, "trace": tr.to_dict(),
            "options": o.to_dict(), "seconds": time.perf_counter() - t0}
     if start is not None:
-        out["start_witnesses"] = {"count": int(len(start["W10"])), "note": start["note"],
+        out["start_witnesses"] = {"count": int(len(start["W10"][0] if isinstance(start["W10"], tuple) else start["W10"])),
+                                  "note": start["note"],
                                   "earlier_seconds": start.get("seconds")}
     if verbose:
         print(f"m = {m}: trace test {tr.status}: |W01| = {len(X)}, |W10| = {len(res.W10)}, relative trace "
@@ -162,9 +167,10 @@ def _uc(d):
 
 
 def resume_trace_test(m, p, X, prev, seed, grow=True, verbose=True):
-    """Continue a trace test that did not pass: the recorded W10 (same q0, l, coordinates) grown by
-    :func:`complete_witnesses` rounds (unless ``grow`` is False), then the trace again.  The earlier runs stay in
-    ``history``."""
+    """Continue a recorded trace test (one that did not pass; with ``grow`` False also one that did): the recorded
+    W10 (same seed, q0, l, coordinates) grown by :func:`complete_witnesses` rounds (unless ``grow`` is False), then
+    the trace again with the current options.  The earlier runs stay in ``history``."""
+    seed = prev.get("seed", seed)
     fam = fast_family(m)
     o = trace_options()
     t0 = time.perf_counter()
@@ -173,15 +179,16 @@ def resume_trace_test(m, p, X, prev, seed, grow=True, verbose=True):
     W10 = _uc(prev["W10"]).reshape(prev["W10_count"], fam.n + 1)
     slice_ = TraceSliceSystem(fam, p, q0 - p, cs)
     if grow:
-        W, rec = complete_witnesses(slice_, l, W10, o, seed=seed + 1000 * (1 + len(prev.get("history", []))),
-                                    verbose=verbose)
+        W, l, rec = complete_witnesses(slice_, l, W10, o, seed=seed + 1000 * (1 + len(prev.get("history", []))),
+                                       verbose=verbose)
     else:
         W, rec = W10, {"moves": [], "monodromy": [], "count": int(len(W10)), "note": "trace recomputed only"}
     tr = compute_trace(fam, p, q0, l, X, W, o, seed=seed, coordinates=cs)
     hist = prev.get("history", []) + [{"W10_count": prev["W10_count"], "status": prev["status"],
-                                       "relative": prev["trace"]["relative"], "seconds": prev["seconds"],
+                                       "relative": prev["trace"]["relative"], "eps": prev["trace"].get("eps"),
+                                       "detection": prev["trace"].get("detection"), "seconds": prev["seconds"],
                                        "witnesses": prev["witnesses"], "trace_outcomes": prev["trace"]["outcomes"]}]
-    out = {**prev, "status": tr.status, "W10_count": int(len(W)), "W10": _c(W), "witnesses": rec,
+    out = {**prev, "status": tr.status, "l": _c(l), "W10_count": int(len(W)), "W10": _c(W), "witnesses": rec,
            "trace": tr.to_dict(), "options": o.to_dict(), "seconds": time.perf_counter() - t0, "history": hist}
     if verbose:
         print(f"m = {m}: trace test (resumed from |W10| = {prev['W10_count']}) {tr.status}: |W01| = {len(X)}, "
@@ -298,20 +305,24 @@ def main(argv=None) -> int:
     ap.add_argument("--loops-no-progress", type=int, default=10)
     ap.add_argument("--resume", action="store_true",
                     help="continue a recorded trace test that failed or was undecided (grow its W10, trace again)")
-    ap.add_argument("--retrace", action="store_true", help="with --resume: recompute the trace only")
+    ap.add_argument("--retrace", action="store_true",
+                    help="with --resume: recompute the trace only (with the current options; also of a test that "
+                         "passed), the earlier trace kept in the record's history")
     ap.add_argument("--coordinates", choices=["pose", "all"], default="pose",
                     help="unknowns the trace test works in: the 12 pose unknowns (default; they separate the "
                          "solutions, checked) or all")
     ap.add_argument("--start-witnesses", type=Path, default=None,
                     help="trace test: start the W10 monodromy from the points of this .npz (arrays W10, note, "
-                         "seconds), saved from an earlier run with the same --seed and --coordinates (one --m)")
+                         "seconds, and l, the hyperplane they lie on, when it is not the seed's first), saved from "
+                         "an earlier run with the same --seed and --coordinates (one --m)")
     args = ap.parse_args(argv)
     start = None
     if args.start_witnesses is not None:
         if len(args.m) != 1:
             ap.error("--start-witnesses needs exactly one --m")
         z = np.load(args.start_witnesses)
-        start = {"W10": z["W10"], "note": str(z["note"]), "seconds": float(z["seconds"]) if "seconds" in z else None}
+        start = {"W10": (z["W10"], z["l"]) if "l" in z else z["W10"], "note": str(z["note"]),
+                 "seconds": float(z["seconds"]) if "seconds" in z else None}
     sections = set(args.only or ["trace", "monodromy"] + (["phc"] if args.phc else []))
     status = 0
     for m in args.m:
@@ -326,12 +337,15 @@ def main(argv=None) -> int:
                      "stored_set": {"path": f"cdpr_algebra/data/{path.name}", "data_sha256": h,
                                     "file_sha256": hashlib.sha256(path.read_bytes()).hexdigest(),
                                     "count": int(len(X)), "unknowns": int(X.shape[1])},
-                     "command": "python derivations/certify_generic_dgp.py --m " + str(m)})
-        if "trace" in sections and args.resume and cert.get("trace_test", {}).get("status") in ("failed", "undecided"):
+                     "command": f"python derivations/certify_generic_dgp.py --m {m}"
+                                + (f" --seed {args.seed}" if args.seed != 1 else "")})
+        if "trace" in sections and args.resume and (args.retrace and "trace_test" in cert
+                                                    or cert.get("trace_test", {}).get("status") in ("failed",
+                                                                                                   "undecided")):
             cert["trace_test"] = resume_trace_test(m, p, X, cert["trace_test"], args.seed, grow=not args.retrace)
             status |= cert["trace_test"]["status"] != "passed"
         elif "trace" in sections:
-            cert["trace_test"] = run_trace_test(m, p, X, args.seed, POSE if args.coordinates == "pose" else None,
+            cert["trace_test"] = run_trace_test(m, p, X, args.seed, COORDINATES[args.coordinates],
                                                 start=start)
             status |= cert["trace_test"]["status"] != "passed"
         if "monodromy" in sections:

@@ -505,8 +505,9 @@ def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestO
                     verbose: bool = False, coordinates=None, start=None):
     """W10 = C cut by l(x) = 0 for a random l (module doc, step 2).  Returns (W10, q0, l, record dict).
     ``coordinates``: see :func:`verify_solution_completeness`.  ``start``: points of W10 already known (from an
-    earlier run with the same seed, options and coordinates, hence the same q0 and l): the first monodromy starts
-    from them instead of from one point of W01 (each must solve the slice system at l; ValueError otherwise).
+    earlier run with the same seed, options and coordinates, hence the same q0), alone (they lie on the first
+    hyperplane l drawn from the seed) or as a pair (points, the hyperplane l they lie on): the first monodromy
+    starts from them instead of from one point of W01 (each must solve the slice system at l; ValueError otherwise).
     How W10 was found does not enter the certificate: the trace decides whether it is complete."""
     o = options or TraceTestOptions()
     cs = _coordinates(system, coordinates, W01)
@@ -523,6 +524,8 @@ def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestO
     if start is not None:  # the hyperplanes drawn as below (l1 unused), so l is that of the earlier run
         rng.random(len(cs))
         l0 = _crandn(rng, k1)
+        if isinstance(start, tuple):
+            start, l0 = start[0], np.asarray(start[1], dtype=complex)
         Y = np.asarray(start, dtype=complex).reshape(-1, slice_.n)
         D, merged = distinct_points(slice_, l0, Y)
         res = np.max(np.abs(slice_.evaluate(D, l0)), axis=1) / (1 + np.max(np.abs(D), axis=1))
@@ -530,7 +533,7 @@ def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestO
             raise ValueError(f"start points off the slice at l (largest relative residual {np.max(res):.1e})")
         record["moves"].append({"from": "start points given (an earlier run, same seed)", "paths": int(len(Y)),
                                 "distinct": int(len(D)), "max_relative_residual": float(np.max(res))})
-        W, rec = complete_witnesses(slice_, l0, D, o, seed=seed, verbose=verbose, first=True)
+        W, l0, rec = complete_witnesses(slice_, l0, D, o, seed=seed, verbose=verbose, first=True)
         record["moves"] += rec["moves"]
         record["monodromy"] += rec["monodromy"]
         record.update({k: v for k, v in rec.items() if k not in ("moves", "monodromy")})
@@ -555,7 +558,7 @@ def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestO
     if paths[0].status != SUCCESS:
         raise RuntimeError(f"the first point of W10 could not be moved to a generic l ({paths[0].status})")
 
-    W, rec = complete_witnesses(slice_, l0, paths[0].endpoint[None, :], o, seed=seed, verbose=verbose, first=True)
+    W, l0, rec = complete_witnesses(slice_, l0, paths[0].endpoint[None, :], o, seed=seed, verbose=verbose, first=True)
     record["moves"] += rec["moves"]
     record["monodromy"] += rec["monodromy"]
     record.update({k: v for k, v in rec.items() if k not in ("moves", "monodromy")})
@@ -571,12 +574,15 @@ def complete_witnesses(slice_, l, W, options: TraceTestOptions | None = None, se
     batches of that many loops and stops after a batch that adds no distinct point).  Then rounds: W is moved to
     another random hyperplane k, completed there by monodromy (``confirm_loops_no_progress``), and the result is
     moved back to l and united with W (distinct points by :func:`distinct_points`); the points a move loses
-    (ill-conditioned ones fail now and then) stay in W.  The rounds stop when ``confirmations`` rounds in a row
-    add nothing (at most ``max_confirm_tries``).  Returns (W at l, record dict)."""
+    (ill-conditioned ones fail now and then) stay in W.  When the other hyperplane holds more points than the
+    union (the moves back lose points that are ill-conditioned at l), it becomes l: every random hyperplane is as
+    generic as the first, and the trace decides completeness wherever W was found.  The rounds stop when
+    ``confirmations`` rounds in a row add nothing (at most ``max_confirm_tries``).  Returns (W, the hyperplane l
+    it lies on, record dict; ``hyperplane_changes``: the rounds that changed l)."""
     o = options or TraceTestOptions()
     rng = np.random.default_rng(seed + 1)
     l = np.asarray(l, dtype=complex)
-    record = {"moves": [], "monodromy": [], "union_counts": []}
+    record = {"moves": [], "monodromy": [], "union_counts": [], "hyperplane_changes": []}
 
     def mono(lk, X, loops_np, s):
         # monodromy in batches of loops_np loops, progress measured in distinct points (distinct_points) after
@@ -661,15 +667,20 @@ def complete_witnesses(slice_, l, W, options: TraceTestOptions | None = None, se
         R = mono(k, X, o.confirm_loops_no_progress, seed + 100 + tries)
         back = move(R, k, l, "back to l", seed + 200 + tries)
         U, _ = distinct_points(slice_, l, np.concatenate([W, back]))
+        adopt = len(R) > len(U)
         if verbose:
             print(f"  W10 round {tries}: {len(R)} at another l, {len(back)} moved back, union {len(U)} "
-                  f"(was {len(W)})", flush=True)
-        stable = 0 if len(U) > len(W) else stable + 1
-        if len(U) > len(W):
-            W = U
+                  f"(was {len(W)})" + ("; the other l holds more: it becomes l" if adopt else ""), flush=True)
+        if adopt:  # the moves back lose points that the other hyperplane holds (ill-conditioned at l): go on there
+            l, W, stable = k, R, 0
+            record["hyperplane_changes"].append(tries)
+        else:
+            stable = 0 if len(U) > len(W) else stable + 1
+            if len(U) > len(W):
+                W = U
         record["union_counts"].append(int(len(W)))
     record.update({"count": int(len(W)), "stable_rounds": stable, "rounds": tries})
-    return W, record
+    return W, l, record
 
 
 def _mp_newton(system, parameters, Y, idx, dps: int = 40, iterations: int = 8):
