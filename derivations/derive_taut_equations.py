@@ -10,6 +10,7 @@ full dF/dp), and writes plain-arithmetic loop code over the cables, common subex
 
     cdpr_algebra/generated/taut_equations.py
         taut_equations(x, p, dp, F, J, Ht, with_ht)   F, the nonzero pattern of J, and Ht when with_ht
+        taut_residual(x, p, F)                         F alone
         taut_parameter_jacobian(x, p, JP)              the nonzero pattern of dF/dp
 
 x = (p, u, v, w, lam_1..lam_m), p = (A_i (3m), rho_i^2 (m), b'_i (3m), g' (3), Q d (3)) in the family's order.
@@ -192,6 +193,17 @@ def generate() -> dict[str, str]:
     L += [f"    J[{'rf' if r < 3 else 'rm'} + {r % 3}, {c}] = j{r}_{c}" for r, c in acc]
     L += ["    if with_ht:"]
     L += [f"        Ht[{'rf' if k < 3 else 'rm'} + {k % 3}] = h{k}" for k in range(6)]
+    # F alone (the interval residual at a point, where J would be wasted work)
+    Fo = _prologue("taut_residual(x, p, F)", [
+        '    """F of the taut family at one point x (or at the columns of arrays), without J."""'])
+    Fo += _block([(f"F[{r}]", e) for r, e in enumerate(rot)] + [(f"s{k}", e) for k, e in enumerate(glob)], 4)
+    Fo += ["    for i in range(m):"]
+    Fo += [f"        {s} = p[ia + 3 * i + {k}]" for k, s in enumerate(cpar[:3])]
+    Fo += ["        r2 = p[ir + i]"]
+    Fo += [f"        {s} = p[ib + 3 * i + {k}]" for k, s in enumerate(cpar[4:])]
+    Fo += ["        lam = x[12 + i]"]
+    Fo += _block([("F[6 + i]", length)] + [(f"s{k} +", e) for k, e in enumerate(part)], 8)
+    Fo += [f"    F[{'rf' if k < 3 else 'rm'} + {k % 3}] = s{k}" for k in range(6)]
     # full parameter Jacobian
     P = _prologue("taut_parameter_jacobian(x, p, JP)", [
         '    """The nonzero pattern of dF/dp of the taut family at x (entries outside it are left untouched)."""'])
@@ -211,7 +223,7 @@ def generate() -> dict[str, str]:
            ":func:`cdpr_algebra.model.taut_equations.taut_family` by ``derivations/derive_taut_equations.py``\n"
            "(see its docstring).  Plain arithmetic and indexing: compiled by numba, on numpy columns, on arb balls.\n"
            '"""\n')
-    text = HEADER.format(script=Path(__file__).name) + doc + "\n".join(L + P) + "\n"
+    text = HEADER.format(script=Path(__file__).name) + doc + "\n".join(L + Fo + P) + "\n"
     return {TARGET: text}
 
 

@@ -22,7 +22,7 @@ from cdpr_algebra.model.taut_equations import taut_family
 from cdpr_algebra.dgp.one_cable import one_cable_equilibria
 from cdpr_algebra.igp.orientation import igp_orientation
 from cdpr_algebra.igp.position import igp_position
-from cdpr_algebra.intervals.balls import krawczyk_certify, symmetric_inertia
+from cdpr_algebra.intervals.balls import krawczyk_certify, symmetric_inertia, symmetric_inertias
 from cdpr_algebra.model.robot import Robot
 from cdpr_algebra.model.stability import stability_classes
 from cdpr_algebra.report.tables import igp_table
@@ -96,6 +96,11 @@ def test_symmetric_inertia():
     assert symmetric_inertia([[arb(v, 0.2) for v in row] for row in K.tolist()]) is None
     Ks = Q @ np.diag([3.0, -1.0, 0.0, -5.0, 0.5]) @ Q.T
     assert symmetric_inertia([[arb(v) for v in row] for row in Ks.tolist()]) is None
+    # several at once, as one by one; an eigenvalue 1e-15 |K| (below the a priori float bounds) is decided by the
+    # ball-arithmetic retry
+    Kt = Q @ np.diag([3.0, -1.0, 1e-15, -5.0, 0.5]) @ Q.T
+    balls = [[[arb(v) for v in row] for row in M.tolist()] for M in (K, Ks, Kt)]
+    assert symmetric_inertias(balls) == [symmetric_inertia(M) for M in balls] == [(3, 2), None, (3, 2)]
 
 
 # -------------------------------------------------------------------------------- DGP, seed 000 Test 1

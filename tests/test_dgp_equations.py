@@ -55,3 +55,25 @@ def test_exact_equilibrium_is_an_exact_zero():
     F = taut_family(4).evaluate(encode(p, R, lam)[None, :], taut_parameters(robot, range(4)))[0]
     assert np.allclose(F[:10], 0, atol=1e-12)  # rotation + cable equations
     assert np.allclose(F[10:], res, atol=1e-12)  # force and moment equations = the balance residual
+
+
+@pytest.mark.parametrize("m", [2, 4, 6])
+def test_generated_residual_is_the_F_of_the_full_evaluator(m):
+    """taut_residual (F alone, for interval residuals) gives F of taut_equations bit for bit, on floats and on
+    numpy columns, and both agree with the symbolic family."""
+    from cdpr_algebra.generated.taut_equations import taut_equations, taut_residual
+
+    rng = np.random.default_rng(m)
+    n, npar = 12 + m, 7 * m + 6
+    x, p = rng.normal(size=n), rng.normal(size=npar)
+    F, J, F2 = np.zeros(n), np.zeros((n, n)), np.zeros(n)
+    taut_equations(list(x), list(p), None, F, J, None, False)
+    taut_residual(list(x), list(p), F2)
+    assert np.array_equal(F, F2)
+    assert np.allclose(F, taut_family(m).evaluate(x[None, :], p)[0].real, rtol=1e-12, atol=1e-12)
+    X = rng.normal(size=(n, 5))
+    Fc = np.zeros((n, 5))
+    taut_residual(list(X), list(p), Fc)
+    for k in range(5):
+        taut_residual(list(X[:, k]), list(p), F2)
+        assert np.array_equal(Fc[:, k], F2)

@@ -30,9 +30,11 @@ for lam).  Over the certified box, in outward-rounded ball arithmetic (python-fl
 * class of H_r = N^T H N (seed 000 eqs. 28-30, :mod:`cdpr_algebra.model.stability`) from the bordered matrix
   K = [[T H T, T J^T D], [D J T, 0]] (T = diag(1, 1, 1, 1/L, 1/L, 1/L), D = Q / L^2 I, positive scalings): when J
   has full row rank m, In(K) = In(H_r) + (m, m, 0) (N. Gould, Math. Programming 32, 1985), and a nonsingular K
-  forces full row rank.  The inertia of K is proven by :func:`cdpr_algebra.intervals.balls.symmetric_inertia` (Gershgorin discs of V^T K V with V
-  the floating-point eigenvectors of mid K, Sylvester's law).  A proven inertia gives the class '>', '<' or '<>';
-  a singular H_r ('>=', '<=', e.g. every m = 1 equilibrium, neutral about the cable) is 'undecided'.
+  forces full row rank.  The inertia of K is proven by :func:`cdpr_algebra.intervals.balls.symmetric_inertias`
+  (Gershgorin discs of V^T K V, with V the floating-point eigenvectors of mid K, enclosed in floating point with
+  a priori rounding bounds; Sylvester's law; the matrices of several roots at once).  A proven inertia gives the
+  class '>', '<' or '<>'; a singular H_r ('>=', '<=', e.g. every m = 1 equilibrium, neutral about the cable) is
+  'undecided'.
 
 ``certified`` is True when existence and uniqueness, every tension sign and every slack cable are proven.
 """
@@ -42,11 +44,11 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 
 import numpy as np
-from flint import arb
+from flint import arb, arb_mat
 
-from cdpr_algebra.generated.taut_equations import taut_equations
+from cdpr_algebra.generated.taut_equations import taut_equations, taut_residual
 from cdpr_algebra.model.taut_equations import encode
-from cdpr_algebra.intervals.balls import bounds, krawczyk_certify, sign, symmetric_inertia
+from cdpr_algebra.intervals.balls import bounds, krawczyk_certify, sign, symmetric_inertia, symmetric_inertias
 from cdpr_algebra.report.jsonable import jsonable
 
 BOX_RTOL = 1e-9  # max width of the certified box relative to the scale of each unknown
@@ -72,16 +74,29 @@ def taut_system(x, A, b, g, f, rho2=None, jacobian: bool = True):
     """
     m = len(A)
     n = 12 + m
-    p = ([c for a in A for c in a] + (list(rho2) if rho2 is not None else [0] * m) + [c for bi in b for c in bi]
-         + list(g) + list(f))
-    F = np.zeros(n, dtype=object)
-    J = np.zeros((n, n), dtype=object)
-    taut_equations(list(x), p, None, F, J, None, False)
+    F, J = _evaluate(list(x), _parameters(A, b, g, f, rho2), n, jacobian)
     rows = range(n) if rho2 is not None else [r for r in range(n) if not 6 <= r < 6 + m]
     Fl = [F[r] for r in rows]
     if not jacobian:
         return Fl, None
     return Fl, [list(J[r]) for r in rows]
+
+
+def _parameters(A, b, g, f, rho2=None):
+    """The parameter vector of the generated evaluator (rho2 None: zeros, the length rows then unused)."""
+    return ([c for a in A for c in a] + (list(rho2) if rho2 is not None else [0] * len(A))
+            + [c for bi in b for c in bi] + list(g) + list(f))
+
+
+def _evaluate(x, p, n, jacobian: bool = True):
+    """F and J (object arrays, J zero outside its pattern; None without ``jacobian``) of the generated evaluators."""
+    F = np.zeros(n, dtype=object)
+    if not jacobian:
+        taut_residual(x, p, F)
+        return F, None
+    J = np.zeros((n, n), dtype=object)
+    taut_equations(x, p, None, F, J, None, False)
+    return F, J
 
 
 def _select(F, J, rows, cols):
@@ -176,32 +191,34 @@ def _bordered_matrix(A, B, G, lam, L, Q):
     J rows [s_i, r_i x s_i] (eq. 30 without the positive factors 1/rho_i, which do not change the inertia)."""
     m = len(A)
     n = 6 + m
-    K = [[arb(0)] * n for _ in range(n)]
+    zero = arb(0)
+    K = [[zero] * n for _ in range(n)]
     r = [_vec_sub(Bi, G) for Bi in B]
     ga = [_vec_sub(G, Ai) for Ai in A]
-    sig = sum(lam, arb(0))
+    sig = sum(lam, zero)
     iL = arb(1) / L
     iL2 = iL * iL
     for k in range(3):
         K[k][k] = sig
-    S = [[sum((lam[i] * _skew_rows(r[i])[a][c] for i in range(m)), arb(0)) for c in range(3)] for a in range(3)]
+    # sum_i lam_i skew(r_i) = skew(sum_i lam_i r_i)
+    S = _skew_rows([sum((lam[i] * r[i][k] for i in range(m)), zero) for k in range(3)])
     for a in range(3):
         for c in range(3):
             K[a][3 + c] = -S[a][c] * iL
             K[3 + a][c] = S[a][c] * iL
     rg = [_dot(r[i], ga[i]) for i in range(m)]
     for a in range(3):
-        for c in range(3):
+        for c in range(a, 3):  # symmetric
             h = sum((lam[i] * (0.5 * (ga[i][a] * r[i][c] + r[i][a] * ga[i][c]) - (rg[i] if a == c else 0))
-                     for i in range(m)), arb(0))
-            K[3 + a][3 + c] = h * iL2
+                     for i in range(m)), zero)
+            K[3 + a][3 + c] = K[3 + c][3 + a] = h * iL2
     D = arb(Q) * iL2
     for i in range(m):
         s = _vec_sub(B[i], A[i])
         rs = _cross(r[i], s)
         row = [s[k] * D for k in range(3)] + [rs[k] * iL * D for k in range(3)]
+        K[6 + i][:6] = row
         for j in range(6):
-            K[6 + i][j] = row[j]
             K[j][6 + i] = row[j]
     return K
 
@@ -213,7 +230,11 @@ def hessian_certificate(A, B, G, lam, L, Q) -> tuple[str, str | None]:
     m = len(A)
     if m == 0:
         return "undecided", None
-    inertia = symmetric_inertia(_bordered_matrix(A, B, G, lam, L, Q))
+    return _hessian_class(symmetric_inertia(_bordered_matrix(A, B, G, lam, L, Q)), m)
+
+
+def _hessian_class(inertia, m) -> tuple[str, str | None]:
+    """:func:`hessian_certificate` from the inertia of K (None: not proven) and m."""
     if inertia is None:
         return "undecided", None
     pos, neg = inertia[0] - m, inertia[1] - m
@@ -226,14 +247,32 @@ def hessian_certificate(A, B, G, lam, L, Q) -> tuple[str, str | None]:
     return "proven", "<>"
 
 
+def _robot_balls(robot):
+    """(A_i, b'_i, g') of the robot as exact balls."""
+    return ([[arb(c) for c in a] for a in robot.base.tolist()],
+            [[arb(c) for c in bb] for bb in robot.platform.tolist()], [arb(c) for c in robot.com.tolist()])
+
+
 def _consequences(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None) -> Certificate:
     """Certificate from the certified enclosures: p (3 balls), R (3 x 3 balls), lam (m balls) of the taut cables.
     ``lengths``: all n lengths (floats) or None (IGP: lengths of the taut cables enclosed from the box);
     ``L``: robot.size."""
+    return _finish([_enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra)])[0]
+
+
+def _finish(parts) -> list:
+    """Certificates from :func:`_enclosures` results, the inertias of their bordered matrices proven at once."""
+    todo = [k for k, (_, K, _) in enumerate(parts) if K is not None]
+    inertias = dict(zip(todo, symmetric_inertias([parts[k][1] for k in todo])))
+    return [Certificate(**fields, **dict(zip(("hessian", "hessian_class"), _hessian_class(inertias.get(k), m))))
+            for k, (fields, _, m) in enumerate(parts)]
+
+
+def _enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None, balls=None):
+    """The fields of the certificate of :func:`_consequences` but the Hessian's, the bordered matrix K (None
+    without taut cables) and m; ``balls``: :func:`_robot_balls` when already made."""
     n = robot.n
-    A = [[arb(float(c)) for c in a] for a in robot.base]
-    bp = [[arb(float(c)) for c in bb] for bb in robot.platform]
-    gp = [arb(float(c)) for c in robot.com]
+    A, bp, gp = balls or _robot_balls(robot)
 
     def body(c):
         return [p[k] + R[k][0] * c[0] + R[k][1] * c[1] + R[k][2] * c[2] for k in range(3)]
@@ -262,12 +301,16 @@ def _consequences(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, ex
         if not margin < 0:
             slack_ok = False
             reasons.append(f"cable {j + 1} not proven slack (|B - A| - rho in [{s_lo[j]:.3g}, {s_hi[j]:.3g}])")
-    hess, cls = hessian_certificate([A[i] for i in taut], [Bs[i] for i in taut], G, list(lam), L, robot.load)
+    m = len(taut)
+    K = _bordered_matrix([A[i] for i in taut], [Bs[i] for i in taut], G, list(lam), L, robot.load) if m else None
     p_lo, p_hi = bounds(p)
     R_lo, R_hi = bounds(R)
-    return Certificate(not reasons, "; ".join(reasons) or None, problem, rel_width * L, p_lo, p_hi, R_lo, R_hi,
-                       t_lo, t_hi, tuple(signs), s_lo, s_hi, slack_ok, hess, cls, True, kr.iterations,
-                       kr.newton_step, extra or {})
+    fields = dict(certified=not reasons, reason="; ".join(reasons) or None, problem=problem, box_width=rel_width * L,
+                  position_lower=p_lo, position_upper=p_hi, rotation_lower=R_lo, rotation_upper=R_hi,
+                  tension_lower=t_lo, tension_upper=t_hi, tension_signs=tuple(signs), slack_margin_lower=s_lo,
+                  slack_margin_upper=s_hi, slack_proven=slack_ok, exists_unique=True, iterations=kr.iterations,
+                  newton_step=kr.newton_step, extra=extra or {})
+    return fields, K, m
 
 
 def _scales(robot, m, cols, L):
@@ -453,7 +496,7 @@ def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry):
     """The roots that double-precision interval arithmetic could not certify, tested again in complex ball
     arithmetic at ``BALL_PREC`` bits (:func:`cdpr_algebra.intervals.complex_krawczyk.certify_complex_root_balls`; only rows with
     ``retry``, at most ``BALL_RETRY_MAX`` of them, the others keep their reason)."""
-    from flint import acb, arb, ctx
+    from flint import arb, ctx
 
     from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes, certify_complex_root_balls
 
@@ -464,7 +507,6 @@ def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry):
         reason[k] += " (not retried in ball arithmetic: its subproblem has failed paths)"
     if not todo:
         return ComplexRootBoxes(proven, lo, hi, real, nonreal, boxes.center, tuple(reason))
-    m = rows.shape[1]
     with ctx.workprec(BALL_PREC):
         f = [arb(robot.load) * arb(float(c)) for c in robot.load_direction]
     for k in todo[:BALL_RETRY_MAX]:
@@ -515,27 +557,88 @@ def certify_igp_orientation(robot, rotation, position, tensions, lengths, box_rt
 def certify_igp_position(robot, com_position, rotation, tensions, lengths, box_rtol: float = BOX_RTOL) -> Certificate:
     """IGP with assigned position of G (seed 004 Sec. 4): unknowns (u, v, w, lam), rotation and balance equations
     (12 x 12) with the platform frame moved to G (b_i' - g', g' = 0, p = G)."""
-    R0 = np.asarray(rotation, float)
+    return certify_igp_positions(robot, com_position, [(rotation, tensions, lengths)], box_rtol)[0]
+
+
+def certify_igp_positions(robot, com_position, roots, box_rtol: float = BOX_RTOL) -> list:
+    """:func:`certify_igp_position` for many roots at one position of G: ``roots`` = (rotation, tensions,
+    lengths) each.  The robot's balls are made once and the floating-point F and J (for C and the Newton step)
+    evaluated for every root at once."""
     m = robot.n
     L = robot.size
-    cols = list(range(3, 12)) + [12 + i for i in range(m)]
-    Gf = np.asarray(com_position, float)
+    n = 12 + m
+    rows = list(range(6)) + list(range(6 + m, n))
+    cols = list(range(3, n))
+    Gf = np.asarray(com_position, float).tolist()
+    roots = list(roots)
+    if not roots:
+        return []
+    Y = np.array([np.concatenate([np.asarray(R, float).T.ravel(), np.asarray(t, float) / np.asarray(rho, float)])
+                  for R, t, rho in roots]).reshape(len(roots), n - 3)
+    F0, J0 = _float_systems(Gf, Y, _parameters(*_robot_data(robot, range(m), float, com_at_origin=True)), rows, cols)
+    C = _inverses(J0)
+    # balls
+    G = [arb(v) for v in Gf]
+    pb = _parameters(*_robot_data(robot, range(m), arb, com_at_origin=True))
+    sel = np.ix_(rows, cols)
 
-    def make_system(num):
-        A, b, g, f = _robot_data(robot, range(m), num, com_at_origin=True)
-        G = [num(v) for v in Gf.tolist()]
-        return lambda y, jac: _select(*taut_system(G + list(y), A, b, g, f, None, jac), range(12), cols)
+    def F(y):
+        return _evaluate(G + y, pb, n, False)[0][rows].tolist()
 
-    x0 = np.concatenate([R0.T.ravel(), np.asarray(tensions, float) / np.asarray(lengths, float)])
+    def J(x):
+        _, Ja = _evaluate(G + x, pb, n)
+        return arb_mat(Ja[sel].tolist())
+
+    balls = _robot_balls(robot)
+    gp = balls[2]
     scale = _scales(robot, m, cols, L)
-    kr = _krawczyk(make_system, x0, scale, box_rtol)
-    if not kr.proven:
-        return _failed("igp_position", robot.n, kr.reason, kr, list(range(m)))
-    X = kr.enclosure
-    R = [[X[k], X[3 + k], X[6 + k]] for k in range(3)]
-    gp = [arb(float(c)) for c in robot.com]
-    p = [arb(float(Gf[k])) - (R[k][0] * gp[0] + R[k][1] * gp[1] + R[k][2] * gp[2]) for k in range(3)]
-    return _consequences("igp_position", robot, list(range(m)), None, p, R, X[9:], kr, kr.relative_width(scale), L)
+    out, parts, proven = [], [], []
+    for j in range(len(roots)):
+        kr = krawczyk_certify(F, J, Y[j], scale, box_rtol, inverse=C[j], residual=F0[j])
+        if not kr.proven:
+            out.append(_failed("igp_position", robot.n, kr.reason, kr, list(range(m))))
+            continue
+        X = kr.enclosure
+        R = [[X[k], X[3 + k], X[6 + k]] for k in range(3)]
+        p = [G[k] - (R[k][0] * gp[0] + R[k][1] * gp[1] + R[k][2] * gp[2]) for k in range(3)]
+        proven.append(len(out))
+        out.append(None)
+        parts.append(_enclosures("igp_position", robot, list(range(m)), None, p, R, X[9:], kr,
+                                 kr.relative_width(scale), L, balls=balls))
+    for j, c in zip(proven, _finish(parts)):
+        out[j] = c
+    return out
+
+
+COLUMNS_FROM = 16  # points from which one evaluation on numpy columns beats one evaluation per point
+
+
+def _float_systems(head, Y, p, rows, cols):
+    """F (N, rows) and J (N, rows, cols) in floats of the generated evaluator at the N points x = head + Y[k]."""
+    N, n = len(Y), len(head) + Y.shape[1]
+    if N >= COLUMNS_FROM:
+        F, J = np.zeros((n, N)), np.zeros((n, n, N))
+        taut_equations(list(head) + list(Y.T), p, None, F, J, None, False)
+        F, J = F.T, J.transpose(2, 0, 1)
+    else:
+        F, J = np.zeros((N, n)), np.zeros((N, n, n))
+        for k in range(N):
+            taut_equations(list(head) + Y[k].tolist(), p, None, F[k], J[k], None, False)
+    return np.ascontiguousarray(F[:, rows]), np.ascontiguousarray(J[:, rows][:, :, cols])
+
+
+def _inverses(Js):
+    """Inverses of a stack of matrices (NaN for a singular one)."""
+    try:
+        return np.linalg.inv(Js)
+    except np.linalg.LinAlgError:
+        out = np.full_like(Js, np.nan)
+        for k, Jk in enumerate(Js):
+            try:
+                out[k] = np.linalg.inv(Jk)
+            except np.linalg.LinAlgError:
+                pass
+        return out
 
 
 def certify_igp_solution(robot, solution, problem: str, box_rtol: float = BOX_RTOL) -> Certificate | None:
@@ -553,8 +656,18 @@ def certify_igp_solution(robot, solution, problem: str, box_rtol: float = BOX_RT
 
 def with_certificates(robot, solutions, problem: str) -> list:
     """The IGP solutions with ``certified`` and ``certificate`` filled in (real ones; complex ones keep None)."""
-    out = []
-    for s in solutions:
-        c = certify_igp_solution(robot, s, problem)
-        out.append(s if c is None else replace(s, certified=c.certified, certificate=c))
-    return out
+    solutions = list(solutions)
+    if problem == "position":  # the real roots of each position of G at once
+        certs = [None] * len(solutions)
+        groups = {}
+        for k, s in enumerate(solutions):
+            if s.real:
+                groups.setdefault(tuple(np.real(s.com_position).tolist()), []).append(k)
+        for G, ks in groups.items():
+            roots = [(np.real(solutions[k].rotation), np.real(solutions[k].tensions), np.real(solutions[k].lengths))
+                     for k in ks]
+            for k, c in zip(ks, certify_igp_positions(robot, G, roots)):
+                certs[k] = c
+    else:
+        certs = [certify_igp_solution(robot, s, problem) for s in solutions]
+    return [s if c is None else replace(s, certified=c.certified, certificate=c) for s, c in zip(solutions, certs)]

@@ -306,6 +306,74 @@ def taut_equations(x, p, dp, F, J, Ht, with_ht):
         Ht[rm + 2] = h5
 
 
+def taut_residual(x, p, F):
+    """F of the taut family at one point x (or at the columns of arrays), without J."""
+    m = len(x) - 12
+    ia, ir, ib, ig, i_f = 0, 3 * m, 4 * m, 7 * m, 7 * m + 3
+    rf, rm = 6 + m, 9 + m
+    P0 = x[0]
+    P1 = x[1]
+    P2 = x[2]
+    u0 = x[3]
+    u1 = x[4]
+    u2 = x[5]
+    v0 = x[6]
+    v1 = x[7]
+    v2 = x[8]
+    w0 = x[9]
+    w1 = x[10]
+    w2 = x[11]
+    g0 = p[ig + 0]
+    g1 = p[ig + 1]
+    g2 = p[ig + 2]
+    f0 = p[i_f + 0]
+    f1 = p[i_f + 1]
+    f2 = p[i_f + 2]
+    t0 = P2 + g0*u2 + g1*v2 + g2*w2
+    t1 = P1 + g0*u1 + g1*v1 + g2*w1
+    t2 = P0 + g0*u0 + g1*v0 + g2*w0
+    F[0] = -1 + u0*u0 + u1*u1 + u2*u2
+    F[1] = -1 + v0*v0 + v1*v1 + v2*v2
+    F[2] = u0*v0 + u1*v1 + u2*v2
+    F[3] = w0 + u2*v1 - u1*v2
+    F[4] = w1 + u0*v2 - u2*v0
+    F[5] = w2 + u1*v0 - u0*v1
+    s0 = f0
+    s1 = f1
+    s2 = f2
+    s3 = f2*t1 - f1*t0
+    s4 = f0*t0 - f2*t2
+    s5 = f1*t2 - f0*t1
+    for i in range(m):
+        a0 = p[ia + 3 * i + 0]
+        a1 = p[ia + 3 * i + 1]
+        a2 = p[ia + 3 * i + 2]
+        r2 = p[ir + i]
+        b0 = p[ib + 3 * i + 0]
+        b1 = p[ib + 3 * i + 1]
+        b2 = p[ib + 3 * i + 2]
+        lam = x[12 + i]
+        t0 = P0 + b0*u0 + b1*v0 + b2*w0
+        t1 = t0 - a0
+        t2 = P1 + b0*u1 + b1*v1 + b2*w1
+        t3 = t2 - a1
+        t4 = P2 + b0*u2 + b1*v2 + b2*w2
+        t5 = t4 - a2
+        F[6 + i] = t1*t1 + t3*t3 + t5*t5 - r2
+        s0 += -lam*t1
+        s1 += -lam*t3
+        s2 += -lam*t5
+        s3 += lam*(a2*t2 - a1*t4)
+        s4 += lam*(a0*t4 - a2*t0)
+        s5 += lam*(a1*t0 - a0*t2)
+    F[rf + 0] = s0
+    F[rf + 1] = s1
+    F[rf + 2] = s2
+    F[rm + 0] = s3
+    F[rm + 1] = s4
+    F[rm + 2] = s5
+
+
 def taut_parameter_jacobian(x, p, JP):
     """The nonzero pattern of dF/dp of the taut family at x (entries outside it are left untouched)."""
     m = len(x) - 12
