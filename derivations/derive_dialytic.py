@@ -32,7 +32,11 @@ floats, complex numbers, numpy arrays, fractions.Fraction and sympy Rationals. T
 coefficients of the quadratic-form entries in the geometric data) is reduced with ``sympy.cse``; the
 determinants are then expanded by Laplace expansion on coefficient arrays (shared sub-minors computed
 once) and the exact division by n is the fixed recurrence Q_{b-2} = S_b - (e1^2 + e2^2 + e3^2) Q_b on the
-coefficients of powers of e0.
+coefficients of powers of e0 (temporaries that no quartic needs, e.g. the coefficients of e0^0 and e0^1 of
+S, which the recurrence never reads, are not emitted). The same minors are also written as tables
+(DET_BLOCKS, DET_TERMS: every quartic as a weighted sum of 3 x 3 determinants of quadratic forms, divided
+by n) over the first layer ``entry_atoms``, which ``cdpr_algebra/igp/quartic_forms.py`` evaluates with
+numpy in floating point; this script checks the tables exactly against the straight-line code.
 
 Row choices of S(e3) are made here deterministically: candidate row sets are tried in a fixed order and the
 first one is kept for which det S(e3) has degree exactly 24 on random rational instances (computed modulo
@@ -51,6 +55,7 @@ from __future__ import annotations
 
 import itertools
 import random
+import re
 import sys
 from fractions import Fraction
 from pathlib import Path
@@ -430,6 +435,117 @@ def emit_divide_by_n(em, S):
     return Q
 
 
+def _is_literal(atom):
+    return atom.lstrip("-").isdigit()
+
+
+def _wrap(items, indent, width=110):
+    """Comma-separated items on lines of at most ``width`` characters (each line ends with a comma)."""
+    lines, cur = [], ""
+    for it in items:
+        piece = it + ","
+        if cur and len(indent) + len(cur) + 1 + len(piece) > width:
+            lines.append(indent + cur)
+            cur = piece
+        else:
+            cur = (cur + " " + piece) if cur else piece
+    if cur:
+        lines.append(indent + cur)
+    return "\n".join(lines)
+
+
+QUADRATIC_MONOMIALS = _monomials(2)
+N_CONSTANT = (0, 0, 0, 0)
+
+
+def _prune(lines, live):
+    """Drop the assignments ``    name = ...`` of ``lines`` whose value reaches none of the names ``live``."""
+    word = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+    needed = set(live)
+    kept = []
+    for line in reversed(lines):
+        target, eq, rhs = line.strip().partition(" = ")
+        if eq and not line.strip().startswith("#"):
+            if target not in needed:
+                continue
+            needed.update(word.findall(rhs))
+        kept.append(line)
+    return kept[::-1]
+
+
+def numeric_tables(hmin, amats, entry_names):
+    """(ENTRY_LITERALS, DET_BLOCKS, DET_TERMS) of the vectorized evaluation (see the generated docstring).
+
+    Every quartic becomes (sum of weighted 3 x 3 determinants of quadratic forms) / n: a 4 x 4 minor is
+    expanded along its only constant column (the other three are quadratic forms, h = 3, one division by n);
+    a 3 x 3 minor with h = 3 is used as it is (one division by n); with h = 2 its constant column is
+    multiplied by n (then det = n p, one division by n).
+    """
+    literals = []
+
+    def lit(a):
+        v = int(a)
+        if v not in literals:
+            literals.append(v)
+
+    # literals first (their indices follow 0), then the entry atoms
+    for name in QUARTIC_NAMES:
+        for row in amats[name]:
+            for form in row:
+                for a in form.values():
+                    if _is_literal(a):
+                        lit(a)
+    lit("1")  # weight of a single-block quartic
+    literals.sort(key=lambda v: (abs(v), v < 0))
+
+    def vindex(a):
+        if _is_literal(a):
+            return 1 + literals.index(int(a))
+        return 1 + len(literals) + entry_names.index(a)
+
+    def quad_indices(form):
+        if not form:
+            return (0,) * len(QUADRATIC_MONOMIALS)
+        if set(form) == {N_CONSTANT}:  # constant c, promoted to c n
+            return tuple(vindex(form[N_CONSTANT]) if m in NDICT else 0 for m in QUADRATIC_MONOMIALS)
+        if not all(sum(m) == 2 for m in form):
+            raise AssertionError("entry is neither a quadratic form nor a constant")
+        return tuple(vindex(form[m]) if m in form else 0 for m in QUADRATIC_MONOMIALS)
+
+    blocks, terms = [], []
+
+    def block(mat, hs):
+        for r in mat:
+            for j, f in enumerate(r):
+                if f and (hs[j] == 0) != (set(f) == {N_CONSTANT}):
+                    raise AssertionError("constant entry in a quadratic column or vice versa")
+        b = tuple(tuple(quad_indices(f) for f in r) for r in mat)
+        if b not in blocks:
+            blocks.append(b)
+        return blocks.index(b)
+
+    for h, name in enumerate(QUARTIC_NAMES):
+        mat, hs, dpow = hmin[name]
+        amat = amats[name]
+        if len(amat) == 4:
+            const = [j for j in range(4) if hs[j] == 0]
+            if len(const) != 1 or sum(hs) != 3 or dpow != 1:
+                raise AssertionError(f"{name}: expected one constant column and h = 3")
+            j = const[0]
+            for i in range(4):
+                f = amat[i][j]
+                if not f:
+                    continue
+                sub = [r[:j] + r[j + 1:] for k, r in enumerate(amat) if k != i]
+                b = block(sub, hs[:j] + hs[j + 1:])
+                terms.append((h, b, (-1) ** (i + j), vindex(f[N_CONSTANT])))
+        else:
+            if len(amat) != 3 or sum(hs) not in (2, 3) or dpow != sum(hs) - 2:
+                raise AssertionError(f"{name}: unexpected minor shape")
+            terms.append((h, block(amat, hs), 1, vindex("1")))
+    return tuple(literals), blocks, terms
+
+
 def generate_quartics_module(hmin):
     """Text of cdpr_algebra/generated/quartics.py."""
     # first layer: coefficient expressions of all entry forms, shared via cse
@@ -467,10 +583,18 @@ def generate_quartics_module(hmin):
     atom_of = {}
     for slot, e in zip(slots, exprs):
         atom_of[slot] = atoms[index[sp.srepr(e)]]
+    # the first layer is the function entry_atoms, returning the distinct non-literal atoms of the entries
+    first_lines, em.lines = em.lines, []
+    entry_names = []
+    for slot in slots:
+        a = atom_of[slot]
+        if not _is_literal(a) and a not in entry_names:
+            entry_names.append(a)
     # forms as atom dicts; identical forms share one object so sub-minors are shared
     form_objs = {}
     out_atoms = {}
     memo = {}
+    amats = {}
     for name in QUARTIC_NAMES:
         mat, hs, dpow = hmin[name]
         amat = []
@@ -481,14 +605,24 @@ def generate_quartics_module(hmin):
                 key = tuple(sorted(d.items()))
                 arow.append(form_objs.setdefault(key, d))
             amat.append(arow)
+        amats[name] = amat
         em.lines.append(f"    # {name} = {MINOR_LABELS[name]}")
         S = emit_det(em, amat, memo)
         for _ in range(dpow):
             S = emit_divide_by_n(em, S)
         out_atoms[name] = [S.get(m, "0") for m in QUARTIC_MONOMIALS]
-    body = "\n".join(em.lines)
+    tables = numeric_tables(hmin, amats, entry_names)
+    # unused temporaries (e.g. negated coefficients of the division by n that no quartic needs) are dropped
+    first = "\n".join(_prune(first_lines, entry_names))
+    body = "\n".join(_prune(em.lines, [a for nm in QUARTIC_NAMES for a in out_atoms[nm]]))
     ret = ",\n".join("        [" + ", ".join(out_atoms[nm]) + "]" for nm in QUARTIC_NAMES)
-    nops = body.count("*") + body.count(" + ") + body.count(" - ")
+    nops = sum(t.count("*") + t.count(" + ") + t.count(" - ") for t in (first, body))
+    names_tuple = _wrap(entry_names, "        ")
+    literals, blocks, terms = tables
+    blocks_txt = "(\n" + "\n".join(
+        "    (\n" + "\n".join("        (" + ", ".join(repr(tuple(e)) for e in row) + ")," for row in blk) + "\n    ),"
+        for blk in blocks) + "\n)"
+    terms_txt = "(\n" + _wrap([repr(t) for t in terms], "    ") + "\n)"
     labels = "\n".join(f"    {nm}: {MINOR_LABELS[nm]}" for nm in QUARTIC_NAMES)
     text = f'''{HEADER}
 """The 11 quartics of seed 004 (Carricato 2013), eqs. 21, 23, 27, 28, as homogeneous quartic forms.
@@ -500,22 +634,51 @@ x = G (the assigned position), b_i = B_i - G in the platform frame:
 ``quartic_coefficients(a2, a3, b1, b2, b3, x)`` returns 11 lists (order QUARTIC_NAMES) of the 35
 coefficients of the monomials e0^i e1^j e2^k e3^l listed in QUARTIC_MONOMIALS (exponent tuples).
 Straight-line code with + - * only ({nops} operations): works on floats, complex, numpy arrays,
-fractions.Fraction and sympy Rationals.
+fractions.Fraction and sympy Rationals. Its first layer, ``entry_atoms``, gives the distinct coefficients
+of the entries of the minors as quadratic forms (or constants) in e.
+
+Tables for a vectorized evaluation (used in floating point by ``cdpr_algebra.igp.position``): with
+v = (0,) + ENTRY_LITERALS + entry_atoms(...),
+
+    p_h = (sum over the terms (h, b, s, w) of DET_TERMS: s v[w] det B_b) / n,
+
+where B_b is the 3 x 3 matrix of quadratic forms whose entry (i, j) has the coefficient v[DET_BLOCKS[b][i][j][m]]
+of the monomial QUADRATIC_MONOMIALS[m]. 4 x 4 minors are expanded along their constant column, and a
+constant column of a 3 x 3 minor is multiplied by n (the division is exact in both cases).
 """
 
 QUARTIC_NAMES = {QUARTIC_NAMES!r}
 
 QUARTIC_MONOMIALS = {QUARTIC_MONOMIALS!r}
 
+QUADRATIC_MONOMIALS = {QUADRATIC_MONOMIALS!r}
 
-def quartic_coefficients(a2, a3, b1, b2, b3, x):
-    """Coefficients [11][35] of p1, p2, p3, p8, p9, ..., p15 (see QUARTIC_NAMES, QUARTIC_MONOMIALS)."""
+ENTRY_LITERALS = {literals!r}
+
+DET_BLOCKS = {blocks_txt}
+
+DET_TERMS = {terms_txt}
+
+
+def entry_atoms(a2, a3, b1, b2, b3, x):
+    """The distinct non-literal coefficients of the entry forms of the 11 minors (a tuple)."""
     a2x, a2y, a2z = a2
     a3x, a3y, a3z = a3
     b1x, b1y, b1z = b1
     b2x, b2y, b2z = b2
     b3x, b3y, b3z = b3
     gx, gy, gz = x
+{first}
+    return (
+{names_tuple}
+    )
+
+
+def quartic_coefficients(a2, a3, b1, b2, b3, x):
+    """Coefficients [11][35] of p1, p2, p3, p8, p9, ..., p15 (see QUARTIC_NAMES, QUARTIC_MONOMIALS)."""
+    (
+{names_tuple}
+    ) = entry_atoms(a2, a3, b1, b2, b3, x)
 {body}
     return [
 {ret},
@@ -853,7 +1016,6 @@ def _load_quartic_function(text):
 
 def _check_against_expanded(qfun, Rg, expanded, ninst=3):
     """The generated straight-line code equals the expanded quartics on random rational data."""
-    gens = Rg.gens
     for inst in random_instances(7, ninst):
         vals = [Fraction(c) for v in inst for c in v]
         got = qfun(*[[Fraction(c) for c in v] for v in inst])
@@ -869,6 +1031,57 @@ def _check_against_expanded(qfun, Rg, expanded, ninst=3):
             for m, g in zip(QUARTIC_MONOMIALS, got[h]):
                 if Fraction(g) != want.get(m, 0):
                     raise AssertionError(f"generated {name} differs from the expanded quartic at {m}")
+
+
+def _check_numeric_tables(text, qfun, ninst=3):
+    """The tables DET_BLOCKS / DET_TERMS give exactly quartic_coefficients (Fractions, random data)."""
+    ns = {}
+    exec(compile(text, QUARTICS_PATH, "exec"), ns)
+
+    def mul(f, g):
+        out = {}
+        for ma, a in f.items():
+            for mb, b in g.items():
+                m = _madd(ma, mb)
+                out[m] = out.get(m, 0) + a * b
+        return out
+
+    def add(f, g, s=1):
+        out = dict(f)
+        for m, b in g.items():
+            out[m] = out.get(m, 0) + s * b
+        return out
+
+    def div_n(S):
+        Q = {}
+        for m in _monomials(6):  # decreasing e0-degree first
+            # S_m = Q_(m - 2 e_0) + sum_k Q_(m - 2 e_k), the latter of e0-degree m_0 (already known)
+            c = S.get(m, 0) - sum(Q.get((m[0],) + tuple(m[i] - 2 * (i == k) for i in (1, 2, 3)), 0)
+                           for k in (1, 2, 3) if m[k] >= 2)
+            if m[0] >= 2:
+                Q[(m[0] - 2,) + m[1:]] = c
+            elif c != 0:
+                raise AssertionError("not divisible by n")
+        return Q
+
+    for inst in random_instances(8, ninst):
+        data = [[Fraction(c) for c in v] for v in inst]
+        v = [0] + list(ns["ENTRY_LITERALS"]) + list(ns["entry_atoms"](*data))
+        B = [[[{m: v[i] for m, i in zip(ns["QUADRATIC_MONOMIALS"], e) if v[i] != 0} for e in row] for row in blk]
+             for blk in ns["DET_BLOCKS"]]
+        sums = [{} for _ in QUARTIC_NAMES]
+        for h, b, sg, w in ns["DET_TERMS"]:
+            M = B[b]
+            det = {}
+            for perm in itertools.permutations(range(3)):
+                sign = (-1) ** sum(perm[a] > perm[b] for a in range(3) for b in range(a + 1, 3))
+                det = add(det, mul(mul(M[0][perm[0]], M[1][perm[1]]), M[2][perm[2]]), sign)
+            sums[h] = add(sums[h], det, sg * v[w])
+        want = qfun(*data)
+        for h, name in enumerate(QUARTIC_NAMES):
+            got = div_n({m: c for m, c in sums[h].items() if c != 0})
+            if [got.get(m, 0) for m in QUARTIC_MONOMIALS] != list(want[h]):
+                raise AssertionError(f"the numeric tables give a wrong {name}")
 
 
 def generate(verbose: bool = False) -> dict[str, str]:
@@ -887,6 +1100,7 @@ def generate(verbose: bool = False) -> dict[str, str]:
     qtext = generate_quartics_module(hmin)
     qfun = _load_quartic_function(qtext)
     _check_against_expanded(qfun, Rg, expanded)
+    _check_numeric_tables(qtext, qfun)
     say("choosing rows of S(e3) ...")
     c20, c21, log = choose_rows(qfun)
     for line in log:

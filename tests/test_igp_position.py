@@ -253,6 +253,21 @@ def test_generated_code_is_plain_arithmetic():
     assert len(gq.QUARTIC_MONOMIALS) == 35 and all(sum(m) == 4 for m in gq.QUARTIC_MONOMIALS)
 
 
+def test_vectorized_quartics_match_the_straight_line_code():
+    """quartic_matrix (numpy on the generated tables) = quartic_coefficients in exact arithmetic, to ~1e-15."""
+    from cdpr_algebra.igp.quartic_forms import quartic_matrix
+
+    rng = np.random.default_rng(19)
+    datas = [[T3[k] for k in ("a2", "a3")] + T3["b"] + [T3["x"]]]
+    datas += [list(rng.uniform(-3, 3, (6, 3)) * 10.0 ** rng.uniform(-1, 1)) for _ in range(20)]
+    for data in datas:
+        data = [[float(c) for c in v] for v in data]
+        exact = np.array(gq.quartic_coefficients(*[[Fraction(c) for c in v] for v in data]), dtype=float)
+        got = quartic_matrix(data)
+        assert got.shape == (11, 35)
+        assert (np.abs(got - exact).max(axis=1) <= 1e-13 * np.abs(exact).max(axis=1)).all()
+
+
 # ------------------------------------------------------------------------------------------ Table 4
 def test_table4_determinant():
     """Degree 20 (e0 = 0 solutions are missing from the Rodrigues chart); 21 x 21 form = printed polynomial."""

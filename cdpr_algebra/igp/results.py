@@ -8,7 +8,7 @@ import numpy as np
 
 from cdpr_algebra.report.jsonable import jsonable as _jsonable
 
-from cdpr_algebra.model.pose import angles_from_matrix, euler_parameters_from_matrix, matrix_from_euler_parameters
+from cdpr_algebra.model.pose import angles_from_matrix, euler_parameters_from_matrix
 from cdpr_algebra.model.stability import stability_classes
 from cdpr_algebra.model.statics import equilibrium_tensions
 
@@ -126,7 +126,15 @@ def make_solutions(robot, com_positions, rotations, euler_parameters=None, real_
         eq = equilibrium_tensions(robot.base, B, G, robot.load, robot.load_direction, length_scale=L)
         classes = [None] * len(idx)
         if dtype is float:
-            classes = stability_classes(robot.base, B, G, eq.tensions, eq.lengths, robot.load, L)
+            # a cable of length 0 (B_i = A_i, e.g. a spurious common root of the IGP quartics) has no line and
+            # no tau_i / rho_i: no H_r class there (hessian None; such roots seen so far fail the balance test)
+            ok = np.flatnonzero(np.all(eq.lengths > 0, axis=-1))
+            if len(ok) == len(idx):
+                classes = stability_classes(robot.base, B, G, eq.tensions, eq.lengths, robot.load, L)
+            elif len(ok):
+                got = stability_classes(robot.base, B[ok], G[ok], eq.tensions[ok], eq.lengths[ok], robot.load, L)
+                for j, c in zip(ok, got):
+                    classes[j] = c
         residual = np.atleast_1d(eq.residual)
         for j, k in enumerate(idx):
             e = euler_parameters[k] if euler_parameters is not None else euler_parameters_from_matrix(np.real(R[j]))
