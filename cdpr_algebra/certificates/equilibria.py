@@ -48,7 +48,7 @@ from flint import arb, arb_mat
 
 from cdpr_algebra.generated.taut_equations import taut_equations, taut_residual
 from cdpr_algebra.model.taut_equations import encode
-from cdpr_algebra.intervals.balls import bounds, krawczyk_certify, sign, symmetric_inertia, symmetric_inertias
+from cdpr_algebra.intervals.balls import bounds, krawczyk_certify, sign, symmetric_inertias
 from cdpr_algebra.report.jsonable import jsonable
 
 BOX_RTOL = 1e-9  # max width of the certified box relative to the scale of each unknown
@@ -223,18 +223,9 @@ def _bordered_matrix(A, B, G, lam, L, Q):
     return K
 
 
-def hessian_certificate(A, B, G, lam, L, Q) -> tuple[str, str | None]:
-    """('proven', class) with class '>', '<' or '<>' of the reduced Hessian, or ('undecided', None).
-
-    A, B (taut cables), G: balls (lists of 3); lam: balls; L, Q: floats."""
-    m = len(A)
-    if m == 0:
-        return "undecided", None
-    return _hessian_class(symmetric_inertia(_bordered_matrix(A, B, G, lam, L, Q)), m)
-
-
 def _hessian_class(inertia, m) -> tuple[str, str | None]:
-    """:func:`hessian_certificate` from the inertia of K (None: not proven) and m."""
+    """('proven', class) with class '>', '<' or '<>' of the reduced Hessian, or ('undecided', None), from the
+    inertia of the bordered matrix K of the m taut cables (None: not proven, or no taut cable)."""
     if inertia is None:
         return "undecided", None
     pos, neg = inertia[0] - m, inertia[1] - m
