@@ -61,9 +61,10 @@ from cdpr_algebra.homotopy.endgame import SolveOptions  # noqa: E402
 from cdpr_algebra.homotopy.monodromy import MonodromyOptions, load_instance, monodromy_solve  # noqa: E402
 from cdpr_algebra.homotopy.solve import solve_parameter_homotopy  # noqa: E402
 from cdpr_algebra.homotopy.tracker import TrackerOptions  # noqa: E402
+from cdpr_algebra.homotopy.projective import HomogenizedQuadratic  # noqa: E402
 from cdpr_algebra.homotopy.trace_test import (TraceSliceSystem, TraceTestOptions,  # noqa: E402
                                               coinciding, complete_witnesses, compute_trace, distinct_points,
-                                              verify_solution_completeness)
+                                              slice_from_chart, slice_to_chart, verify_solution_completeness)
 
 FORMAT = "cdpr_algebra.dgp_generic_completeness"
 FORMAT_VERSION = 1
@@ -138,19 +139,24 @@ def trace_options():
                             witness_loops_no_progress=5, confirm_loops_no_progress=3, confirmations=2, eps=1.0)
 
 
-def run_trace_test(m, p, X, seed, coordinates, verbose=True, start=None):
+def run_trace_test(m, p, X, seed, coordinates, verbose=True, start=None, chart=None):
     """The trace test of the stored set; ``start``: None, or a dict {"W10": known points of W10 from an earlier
-    run with the same seed (same q0 and l), "note": where they come from} (recorded as ``start_witnesses``)."""
+    run with the same seed (same q0 and l), "note": where they come from} (recorded as ``start_witnesses``);
+    ``chart``: None, or the seed of the chart W10 is found on (recorded as ``chart``)."""
     fam = fast_family(m)
     o = trace_options()
     t0 = time.perf_counter()
     res = verify_solution_completeness(fam, p, X, seed=seed, options=o, verbose=verbose, coordinates=coordinates,
-                                       start=None if start is None else start["W10"])
+                                       start=None if start is None else start["W10"], chart=chart)
     tr = res.trace
     out = {"status": tr.status, "count": int(len(X)), "seed": seed, "q0": _c(res.q0), "l": _c(res.l),
            "coordinates": [int(c) for c in res.coordinates],
            "W10_count": int(len(res.W10)), "W10": _c(res.W10), "witnesses": res.witnesses, "trace": tr.to_dict(),
            "options": o.to_dict(), "seconds": time.perf_counter() - t0}
+    if chart is not None:
+        out["chart"] = {"seed": int(chart), "c": _c(res.chart),
+                        "note": "W10 found by monodromy on this chart of projective space (zero off y0 and the "
+                                "trace coordinates), mapped back; W10, l and the trace are in affine coordinates"}
     if start is not None:
         out["start_witnesses"] = {"count": int(len(start["W10"][0] if isinstance(start["W10"], tuple) else start["W10"])),
                                   "note": start["note"],
@@ -178,9 +184,15 @@ def resume_trace_test(m, p, X, prev, seed, grow=True, verbose=True):
     q0, l = _uc(prev["q0"]), _uc(prev["l"])
     W10 = _uc(prev["W10"]).reshape(prev["W10_count"], fam.n + 1)
     slice_ = TraceSliceSystem(fam, p, q0 - p, cs)
-    if grow:
-        W, l, rec = complete_witnesses(slice_, l, W10, o, seed=seed + 1000 * (1 + len(prev.get("history", []))),
-                                       verbose=verbose)
+    gseed = seed + 1000 * (1 + len(prev.get("history", [])))
+    if grow and "chart" in prev:  # grow on the recorded chart (see run_trace_test), then map back
+        c = _uc(prev["chart"]["c"])
+        Wc, lc = slice_to_chart(W10, l, c, cs)
+        sc = TraceSliceSystem(HomogenizedQuadratic(fam, c), p, q0 - p, np.concatenate([[0], 1 + np.asarray(cs)]))
+        Wc, lc, rec = complete_witnesses(sc, lc, Wc, o, seed=gseed, verbose=verbose)
+        W, l = slice_from_chart(Wc, lc, c, cs)
+    elif grow:
+        W, l, rec = complete_witnesses(slice_, l, W10, o, seed=gseed, verbose=verbose)
     else:
         W, rec = W10, {"moves": [], "monodromy": [], "count": int(len(W10)), "note": "trace recomputed only"}
     tr = compute_trace(fam, p, q0, l, X, W, o, seed=seed, coordinates=cs)
@@ -311,6 +323,10 @@ def main(argv=None) -> int:
     ap.add_argument("--coordinates", choices=["pose", "all"], default="pose",
                     help="unknowns the trace test works in: the 12 pose unknowns (default; they separate the "
                          "solutions, checked) or all")
+    ap.add_argument("--chart", type=int, default=None, metavar="SEED",
+                    help="trace test: find W10 by monodromy on a random chart of projective space (this seed), where "
+                         "witness points of very large norm are ordinary points (m = 4 needs it); the trace stays "
+                         "in affine coordinates")
     ap.add_argument("--start-witnesses", type=Path, default=None,
                     help="trace test: start the W10 monodromy from the points of this .npz (arrays W10, note, "
                          "seconds, and l, the hyperplane they lie on, when it is not the seed's first), saved from "
@@ -338,7 +354,8 @@ def main(argv=None) -> int:
                                     "file_sha256": hashlib.sha256(path.read_bytes()).hexdigest(),
                                     "count": int(len(X)), "unknowns": int(X.shape[1])},
                      "command": f"python derivations/certify_generic_dgp.py --m {m}"
-                                + (f" --seed {args.seed}" if args.seed != 1 else "")})
+                                + (f" --seed {args.seed}" if args.seed != 1 else "")
+                                + (f" --chart {args.chart}" if args.chart is not None else "")})
         if "trace" in sections and args.resume and (args.retrace and "trace_test" in cert
                                                     or cert.get("trace_test", {}).get("status") in ("failed",
                                                                                                    "undecided")):
@@ -346,7 +363,7 @@ def main(argv=None) -> int:
             status |= cert["trace_test"]["status"] != "passed"
         elif "trace" in sections:
             cert["trace_test"] = run_trace_test(m, p, X, args.seed, COORDINATES[args.coordinates],
-                                                start=start)
+                                                start=start, chart=args.chart)
             status |= cert["trace_test"]["status"] != "passed"
         if "monodromy" in sections:
             cert["monodromy_from_scratch"] = run_monodromy(m, args.seed, args.loops_no_progress, p, X)

@@ -19,7 +19,7 @@ from cdpr_algebra.homotopy import PolynomialSystem, SolveOptions, TrackerOptions
 from cdpr_algebra.homotopy.monodromy import load_instance, monodromy_solve
 from cdpr_algebra.homotopy.results import FAILURES
 from cdpr_algebra.homotopy.trace_test import (TracePencilSystem, TraceSliceSystem, TraceTestOptions, compute_trace,
-                                              distinct_points,
+                                              coordinate_chart, distinct_points, slice_from_chart, slice_to_chart,
                                               verify_solution_completeness)
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -260,3 +260,141 @@ def test_phcpack_count_recorded_and_contained_in_the_stored_set(m):
     d = np.abs(Z[:, None, :] - P[None, :, :]).max(axis=2) / (1 + np.abs(P).max(axis=1))[None, :]
     assert int(np.sum(d.min(axis=0) <= 1e-6)) >= len(P) - failed
     assert int(np.sum(d.min(axis=1) > 1e-6)) <= len(X) - len(P)
+
+
+# ---------------------------------------------------------------------------------------------
+# the trace test on a chart of projective space (W10 points of very large norm; DGP m = 4)
+@pytest.mark.parametrize("m", [2, 3, 4, 5, 6])
+def test_recorded_witnesses_lie_on_the_recorded_slice(m):
+    """The recorded W10 solve the slice system at the recorded hyperplane (recomputed, cheap), are distinct, and a
+    certificate whose W10 was found on a chart records a chart of :func:`coordinate_chart` (zero off y0 and the
+    trace coordinates, so that its hyperplanes are affine ones)."""
+    if m not in available_m():
+        pytest.skip(f"no stored generic set for m = {m}")
+    if "trace_test" not in certificate(m):
+        pytest.skip(f"no trace test recorded for m = {m}")
+    fam, p, X, q0, l, W10, tt = _recorded(m)
+    sl = TraceSliceSystem(fam, p, q0 - p, tt["coordinates"])
+    res = np.max(np.abs(sl.evaluate(W10, l)), axis=1) / (1 + np.max(np.abs(W10), axis=1)) ** 2
+    assert res.max() <= 1e-8
+    assert len(distinct_points(sl, l, W10)[0]) == len(W10)
+    if "chart" in tt:
+        c = _uc(tt["chart"]["c"])
+        expect = coordinate_chart(fam.n, tt["coordinates"], tt["chart"]["seed"])
+        np.testing.assert_allclose(c, expect, atol=1e-15)
+        assert np.all(c[1 + np.arange(len(tt["coordinates"]), fam.n)] == 0)
+
+
+def test_homogenized_mp_functions_match_the_float_evaluators():
+    from cdpr_algebra.homotopy.projective import HomogenizedQuadratic, _chart, to_chart
+    import mpmath
+
+    fam = fast_family(3)
+    p, X, _ = load_instance(generic_path(3))
+    h = HomogenizedQuadratic(fam, _chart(fam.n, 5))
+    Y = to_chart(X[:2], h.c)
+    assert np.max(np.abs(h.evaluate(Y, p))) < 1e-10
+    rng = np.random.default_rng(0)
+    Y = Y + 0.1 * (rng.normal(size=Y.shape) + 1j * rng.normal(size=Y.shape))
+    F, J, JP = h.evaluate_all(Y, p)
+    mF, mJ, mP = h.mp_functions()
+    pm = [mpmath.mpc(complex(v)) for v in p]
+    for k in range(2):
+        Ym = [mpmath.mpc(complex(v)) for v in Y[k]]
+        np.testing.assert_allclose(np.array(mF(Ym, pm).tolist(), dtype=complex).ravel(), F[k], atol=1e-12)
+        np.testing.assert_allclose(np.array(mJ(Ym, pm).tolist(), dtype=complex), J[k], atol=1e-12)
+        np.testing.assert_allclose(np.array(mP(Ym, pm).tolist(), dtype=complex), JP[k], atol=1e-12)
+
+
+def test_slice_chart_round_trip():
+    """Witness points of an affine slice taken to a chart of coordinate_chart and back: the same points, and the
+    hyperplane recovered from the chart form with any constant term still contains them (it is affine)."""
+    from cdpr_algebra.homotopy.projective import from_chart
+
+    S = _dense_quadrics(3)
+    r = monodromy_solve(S, seed=1)
+    res = verify_solution_completeness(S, r.parameters, r.solutions, seed=2, coordinates=[0, 1])
+    c = coordinate_chart(S.n, [0, 1], 7)
+    assert c[3] == 0 and np.all(c[:3] != 0)
+    Wc, lc = slice_to_chart(res.W10, res.l, c, [0, 1])
+    W, l = slice_from_chart(Wc, lc, c, [0, 1])
+    np.testing.assert_allclose(W, res.W10, rtol=1e-12, atol=1e-12)
+    lc2 = lc + np.array([0, 0, 0, 0.7 - 0.2j])  # a constant k: k = k c . Y on the chart
+    lc2[:3] -= (0.7 - 0.2j) * c[:3]
+    W2, l2 = slice_from_chart(Wc, lc2, c, [0, 1])
+    np.testing.assert_allclose(l2, l, atol=1e-12)
+    with pytest.raises(ValueError, match="zero off"):
+        slice_from_chart(Wc, lc, np.ones(S.n + 1), [0, 1])
+    x, ratio = from_chart(Wc[:, :-1])
+    assert np.all(ratio > 0)
+
+
+def test_trace_test_with_witnesses_found_on_a_chart():
+    """verify_solution_completeness(chart=...) on a small family: W10 found on a chart, mapped back to affine
+    coordinates, the trace passes; it fails with a point removed."""
+    S = _dense_quadrics(2)
+    r = monodromy_solve(S, seed=1)
+    p, X = r.parameters, r.solutions
+    res = verify_solution_completeness(S, p, X, seed=3, chart=11)
+    assert res.status == "passed" and res.chart is not None and len(res.W10) > 0
+    assert np.max(np.abs(TraceSliceSystem(S, p, res.q0 - p).evaluate(res.W10, res.l))) < 1e-9
+    tr = compute_trace(S, p, res.q0, res.l, X, res.W10[1:], seed=3)
+    assert tr.status == "failed"
+
+
+def test_chart_pencil_is_the_affine_pencil():
+    """ChartPencilSystem: Jacobians by finite differences, and its paths end at the affine pencil's endpoints
+    (mapped back from the chart)."""
+    from cdpr_algebra.homotopy.projective import HomogenizedQuadratic, _chart, from_chart, to_chart
+    from cdpr_algebra.homotopy.trace_test import ChartPencilSystem, _track
+
+    S = _dense_quadrics(2)
+    r = monodromy_solve(S, seed=1)
+    p, X = r.parameters, r.solutions
+    res = verify_solution_completeness(S, p, X, seed=3)
+    h = HomogenizedQuadratic(S, _chart(S.n, 3))
+    cp = ChartPencilSystem(h, p, res.q0 - p, res.l)
+    ap = TracePencilSystem(S, p, res.q0 - p, res.l)
+    P = np.concatenate([np.concatenate([X, np.zeros((len(X), 1))], axis=1), res.W10])
+    Pc = np.concatenate([to_chart(P[:, :-1], h.c), P[:, -1:]], axis=1)
+    assert np.max(np.abs(cp.evaluate(Pc, [0.0]))) < 1e-9
+    rng = np.random.default_rng(2)
+    y = Pc[:3] + 0.05 * (rng.normal(size=Pc[:3].shape) + 1j * rng.normal(size=Pc[:3].shape))
+    tau = np.array([0.3 - 0.1j])
+    G, J, JP = cp.evaluate_all(y, tau)
+    hh = 1e-7
+    for j in range(cp.n):
+        e = np.zeros(cp.n)
+        e[j] = hh
+        np.testing.assert_allclose(J[:, :, j], (cp.evaluate(y + e, tau) - cp.evaluate(y - e, tau)) / (2 * hh), atol=1e-6)
+    np.testing.assert_allclose(JP[:, :, 0], (cp.evaluate(y, tau + hh) - cp.evaluate(y, tau - hh)) / (2 * hh), atol=1e-6)
+    g = 0.6 + 0.8j
+    ea = np.array([q.endpoint for q in _track(ap, P, [0.0], [g], SolveOptions(), 0)])
+    ec = np.array([q.endpoint for q in _track(cp, Pc, [0.0], [g], SolveOptions(), 0)])
+    xc, _ = from_chart(ec[:, :-1])
+    np.testing.assert_allclose(np.concatenate([xc, ec[:, -1:]], axis=1), ea, rtol=1e-8, atol=1e-8)
+
+
+def test_lost_pencil_paths_are_tracked_again_on_a_chart():
+    """A pencil path marked lost is tracked again on a chart and replaced by its endpoint there, which is the
+    affine path's endpoint (retried = "chart")."""
+    from dataclasses import replace as dreplace
+
+    from cdpr_algebra.homotopy.trace_test import _retrack_in_chart, _track
+
+    S = _dense_quadrics(2)
+    r = monodromy_solve(S, seed=1)
+    p, X = r.parameters, r.solutions
+    res = verify_solution_completeness(S, p, X, seed=3)
+    P = np.concatenate([np.concatenate([X, np.zeros((len(X), 1))], axis=1), res.W10])
+    ap = TracePencilSystem(S, p, res.q0 - p, res.l)
+    o = TraceTestOptions()
+    paths = _track(ap, P, [0.0], [0.5j], o.pencil, 0)
+    spoiled = list(paths)
+    spoiled[1] = dreplace(paths[1], status="step_too_small")
+    out, lost, rescued = _retrack_in_chart(S, p, res.q0, res.l, np.arange(S.n), P, spoiled, 0.5j, o, 0)
+    assert (lost, rescued) == (1, 1) and out[1].retried == "chart" and out[1].status == "success"
+    np.testing.assert_allclose(out[1].endpoint, paths[1].endpoint, rtol=1e-8, atol=1e-8)
+    none, lost, rescued = _retrack_in_chart(S, p, res.q0, res.l, np.arange(S.n), P, spoiled, 0.5j,
+                                            TraceTestOptions(chart_retrack=None), 0)
+    assert (lost, rescued) == (1, 0) and none[1].status == "step_too_small"

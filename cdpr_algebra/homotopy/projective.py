@@ -114,11 +114,54 @@ class HomogenizedQuadratic:
     def evaluate_all(self, Y, p=None):
         return self._assemble(Y, p, 2)
 
+    def mp_functions(self):
+        """mpmath evaluators (F_h(Y, p), dF_h/dY, dF_h/dp), the same combination of the system's own
+        ``mp_functions`` at y, -y and 0 (Newton's method in arbitrary precision on the chart)."""
+        import mpmath
+
+        fF, fJ, fP = self.system.mp_functions()
+        n, m = self.system.n, self.m
+        c = [mpmath.mpc(complex(v)) for v in self.c]
+
+        def parts(Y, p, f):
+            y = [Y[i + 1] for i in range(n)]
+            return Y[0], f(y, p), f([-t for t in y], p), f([mpmath.mpc(0)] * n, p)
+
+        def mF(Y, p=()):
+            a, Fp, Fm, C = parts(Y, p, fF)
+            out = mpmath.matrix(n + 1, 1)
+            for i in range(n):
+                out[i] = a * a * C[i] + a * (Fp[i] - Fm[i]) / 2 + (Fp[i] + Fm[i]) / 2 - C[i]
+            out[n] = mpmath.fsum(ci * Y[j] for j, ci in enumerate(c)) - 1
+            return out
+
+        def mJ(Y, p=()):
+            a, Fp, Fm, C = parts(Y, p, fF)
+            _, Jp, Jm, _ = parts(Y, p, fJ)
+            out = mpmath.matrix(n + 1, n + 1)
+            for i in range(n):
+                out[i, 0] = 2 * a * C[i] + (Fp[i] - Fm[i]) / 2
+                for j in range(n):
+                    out[i, j + 1] = a * (Jp[i, j] + Jm[i, j]) / 2 + (Jp[i, j] - Jm[i, j]) / 2
+            for j, ci in enumerate(c):
+                out[n, j] = ci
+            return out
+
+        def mP(Y, p=()):
+            a, Pp, Pm, P0 = parts(Y, p, fP)
+            out = mpmath.matrix(n + 1, m)
+            for i in range(n):
+                for k in range(m):
+                    out[i, k] = a * a * P0[i, k] + a * (Pp[i, k] - Pm[i, k]) / 2 + (Pp[i, k] + Pm[i, k]) / 2 - P0[i, k]
+            return out
+
+        return mF, mJ, mP
+
     def evaluate_directional(self, Y, p, dp):
         """F_h, dF_h/dy and dF_h/dp . dp (same combination of the system's directional derivatives)."""
         if not hasattr(self.system, "evaluate_directional"):
             F, J, JP = self.evaluate_all(Y, p)
-            return F, J, np.einsum("nik,nk->ni", JP, dp)
+            return F, J, np.einsum("nik,nk->ni", JP, np.broadcast_to(np.asarray(dp, dtype=complex), JP.shape[::2]))
         F, J = self._assemble(Y, p, 1)
         Y = np.atleast_2d(np.asarray(Y, dtype=complex))
         N = len(Y)

@@ -37,6 +37,14 @@ arbitrary precision (:func:`polish`): in double precision one point of condition
 trace whose single-point signals can be that small.  ``coordinates`` runs the test on the image of the curve in a
 subset of the unknowns that separates the solutions (:func:`verify_solution_completeness`).
 
+Points of very large norm.  W10 can hold points far out along the curve (DGP m = 4: one of norm 1.7e4, with
+condition numbers of 1e11-1e14 on the way there); in affine coordinates the monodromy paths towards such a point fail
+every time, the point is never found and the trace fails.  ``verify_solution_completeness(chart=seed)`` finds W10
+on a random chart of projective space (:func:`coordinate_chart`, zero off y0 and the trace coordinates, so that
+its hyperplanes are affine hyperplanes: :func:`slice_from_chart`), where such points are ordinary; and
+:func:`compute_trace` tracks a pencil path lost in affine coordinates again on a chart (:class:`ChartPencilSystem`,
+the same pencil; ``TraceTestOptions.chart_retrack``).  The sums are always taken in affine coordinates.
+
 What this proves and what it does not: the trace certifies completeness for the components of C through the
 points of W01 (monodromy from one seed samples one irreducible component); solutions on other components of
 the family (e.g. a component where some unknown is identically zero) are outside its scope.
@@ -55,238 +63,13 @@ from .homotopies import ParameterHomotopy
 from .monodromy import MonodromyOptions, monodromy_solve
 from .results import STATUSES, SUCCESS
 from .endgame import track_paths
+from .trace_systems import (ChartPencilSystem, TracePencilSystem, TraceSliceSystem, _crandn,  # noqa: F401
+                            coordinate_chart, slice_from_chart, slice_to_chart)
 
 __all__ = ["TraceSliceSystem", "TracePencilSystem", "TraceTestOptions", "TraceResult", "TraceTestResult",
-           "distinct_points", "coinciding", "trace_witnesses", "complete_witnesses", "polish", "compute_trace", "verify_solution_completeness", "random_direction"]
-
-
-def _crandn(rng, *shape):
-    return (rng.normal(size=shape) + 1j * rng.normal(size=shape)) / np.sqrt(2.0)
-
-
-class _CurveSystem:
-    """F(x; p0 + s v) in the unknowns y = (x, s): values, Jacobian d/d(x, s) (dF/ds = dF/dp . v)."""
-
-    def __init__(self, system, p0, v):
-        if system.neq != system.n:
-            raise ValueError("the trace test needs a square family (as many equations as unknowns)")
-        self.base = system
-        self.p0 = np.asarray(p0, dtype=complex)
-        self.v = np.asarray(v, dtype=complex)
-        if self.p0.shape != (system.m,) or self.v.shape != (system.m,):
-            raise ValueError(f"expected {system.m} parameters")
-        self.nx = system.n
-
-    def _split(self, y):
-        y = np.asarray(y, dtype=complex)
-        if y.ndim == 1:
-            y = y[None, :]
-        x = np.ascontiguousarray(y[:, :self.nx])
-        s = y[:, self.nx]
-        return y, x, s, self.p0[None, :] + s[:, None] * self.v[None, :]
-
-    def _curve(self, y, jac: bool):
-        y, x, s, p = self._split(y)
-        if not jac:
-            return y, x, s, self.base.evaluate(x, p), None
-        directional = getattr(self.base, "evaluate_directional", None)
-        if directional is not None:  # F, dF/dx and dF/dp . v without the full dF/dp
-            F, J, Fs = directional(x, p, self.v)
-        else:
-            F, J, JP = self.base.evaluate_all(x, p)
-            Fs = np.einsum("nik,k->ni", JP, self.v)
-        N = len(y)
-        Jy = np.empty((N, self.nx, self.nx + 1), dtype=complex)
-        Jy[:, :, :self.nx] = J
-        Jy[:, :, self.nx] = Fs
-        return y, x, s, F, Jy
-
-    def _mp_curve(self):
-        """mpmath evaluators of the curve: (F(y), J(y)) from the base system's ``mp_functions``."""
-        import mpmath
-
-        fF, fJ, fP = self.base.mp_functions()
-        p0 = [mpmath.mpc(complex(c)) for c in self.p0]
-        v = [mpmath.mpc(complex(c)) for c in self.v]
-        nx = self.nx
-
-        def curve(y):
-            x = [y[i] for i in range(nx)]
-            s = y[nx]
-            p = [a + s * b for a, b in zip(p0, v)]
-            F = fF(x, p)
-            J, JP = fJ(x, p), fP(x, p)
-            Jy = mpmath.matrix(nx, nx + 1)
-            for i in range(nx):
-                for j in range(nx):
-                    Jy[i, j] = J[i, j]
-                Jy[i, nx] = mpmath.fsum(JP[i, k] * v[k] for k in range(len(v)))
-            return F, Jy
-
-        return curve
-
-
-class TraceSliceSystem(_CurveSystem):
-    """[F(x; p0 + s v); l . (x, 1)] in the unknowns (x, s) (n + 1), parameters l (n + 1): C cut by l(x) = 0.
-
-    Evaluators follow :class:`.systems.PolynomialSystem` (``evaluate``, ``evaluate_and_jacobian``,
-    ``evaluate_all`` with dG/dl, ``evaluate_directional``, ``mp_functions``)."""
-
-    def __init__(self, system, p0, v, coordinates=None):
-        super().__init__(system, p0, v)
-        self.coords = np.arange(self.nx) if coordinates is None else np.asarray(coordinates, dtype=int)
-        self.n = self.nx + 1
-        self.neq = self.nx + 1
-        self.m = len(self.coords) + 1
-        self.name = f"trace_slice({getattr(system, 'name', 'system')})"
-
-    def _affine(self, x):
-        return np.concatenate([x[:, self.coords], np.ones((len(x), 1), dtype=complex)], axis=1)
-
-    def _lin(self, x, l):
-        l = np.asarray(l, dtype=complex)
-        return np.einsum("nk,nk->n", self._affine(x), np.broadcast_to(l, (len(x), self.m)))
-
-    def evaluate(self, y, l=None):
-        y, x, s, F, _ = self._curve(y, False)
-        return np.concatenate([F, self._lin(x, l)[:, None]], axis=1)
-
-    def evaluate_and_jacobian(self, y, l=None):
-        y, x, s, F, Jc = self._curve(y, True)
-        N = len(y)
-        l = np.broadcast_to(np.asarray(l, dtype=complex), (N, self.m))
-        G = np.concatenate([F, self._lin(x, l)[:, None]], axis=1)
-        J = np.zeros((N, self.neq, self.n), dtype=complex)
-        J[:, :self.nx, :] = Jc
-        J[:, self.nx, self.coords] = l[:, :-1]
-        return G, J
-
-    def evaluate_all(self, y, l=None):
-        G, J = self.evaluate_and_jacobian(y, l)
-        y = np.atleast_2d(np.asarray(y, dtype=complex))
-        JP = np.zeros((len(y), self.neq, self.m), dtype=complex)
-        JP[:, self.nx, :] = self._affine(y[:, :self.nx])
-        return G, J, JP
-
-    def evaluate_directional(self, y, l, dl):
-        G, J = self.evaluate_and_jacobian(y, l)
-        y = np.atleast_2d(np.asarray(y, dtype=complex))
-        Gt = np.zeros_like(G)
-        Gt[:, self.nx] = np.einsum("nk,nk->n", self._affine(y[:, :self.nx]),
-                                   np.broadcast_to(np.asarray(dl, dtype=complex), (len(y), self.m)))
-        return G, J, Gt
-
-    def mp_functions(self):
-        import mpmath
-
-        curve = self._mp_curve()
-        nx = self.nx
-        cs = [int(c) for c in self.coords]
-        k = len(cs)
-
-        def mF(y, l):
-            F, _ = curve(y)
-            return mpmath.matrix(list(F) + [mpmath.fsum(l[j] * y[c] for j, c in enumerate(cs)) + l[k]])
-
-        def mJ(y, l):
-            _, Jc = curve(y)
-            J = mpmath.matrix(nx + 1, nx + 1)
-            for i in range(nx):
-                for j in range(nx + 1):
-                    J[i, j] = Jc[i, j]
-            for j, c in enumerate(cs):
-                J[nx, c] = l[j]
-            return J
-
-        def mP(y, l):
-            JP = mpmath.matrix(nx + 1, k + 1)
-            for j, c in enumerate(cs):
-                JP[nx, j] = y[c]
-            JP[nx, k] = 1
-            return JP
-
-        return mF, mJ, mP
-
-
-class TracePencilSystem(_CurveSystem):
-    """[F(x; p0 + s v); s l . (x, 1) - tau] in the unknowns (x, s), one parameter tau: C cut by the pencil member
-    s l(x) = tau; tau = 0 is the union (W01 x {0}) + W10."""
-
-    def __init__(self, system, p0, v, l, coordinates=None):
-        super().__init__(system, p0, v)
-        self.coords = np.arange(self.nx) if coordinates is None else np.asarray(coordinates, dtype=int)
-        self.l = np.asarray(l, dtype=complex)
-        if self.l.shape != (len(self.coords) + 1,):
-            raise ValueError(f"expected {len(self.coords) + 1} coefficients of l")
-        self.n = self.nx + 1
-        self.neq = self.nx + 1
-        self.m = 1
-        self.name = f"trace_pencil({getattr(system, 'name', 'system')})"
-
-    def _tau(self, tau, N):
-        tau = np.asarray(tau, dtype=complex)
-        return np.broadcast_to(tau.reshape(-1) if tau.ndim <= 1 else tau[:, 0], (N,))
-
-    def evaluate(self, y, tau=None):
-        y, x, s, F, _ = self._curve(y, False)
-        lx = x[:, self.coords] @ self.l[:-1] + self.l[-1]
-        return np.concatenate([F, (s * lx - self._tau(tau, len(y)))[:, None]], axis=1)
-
-    def evaluate_and_jacobian(self, y, tau=None):
-        y, x, s, F, Jc = self._curve(y, True)
-        N = len(y)
-        lx = x[:, self.coords] @ self.l[:-1] + self.l[-1]
-        G = np.concatenate([F, (s * lx - self._tau(tau, N))[:, None]], axis=1)
-        J = np.zeros((N, self.neq, self.n), dtype=complex)
-        J[:, :self.nx, :] = Jc
-        J[:, self.nx, self.coords] = s[:, None] * self.l[None, :-1]
-        J[:, self.nx, self.nx] = lx
-        return G, J
-
-    def evaluate_all(self, y, tau=None):
-        G, J = self.evaluate_and_jacobian(y, tau)
-        JP = np.zeros((len(G), self.neq, 1), dtype=complex)
-        JP[:, self.nx, 0] = -1.0
-        return G, J, JP
-
-    def evaluate_directional(self, y, tau, dtau):
-        G, J = self.evaluate_and_jacobian(y, tau)
-        Gt = np.zeros_like(G)
-        Gt[:, self.nx] = -self._tau(dtau, len(G))
-        return G, J, Gt
-
-    def mp_functions(self):
-        import mpmath
-
-        curve = self._mp_curve()
-        nx = self.nx
-        l = [mpmath.mpc(complex(c)) for c in self.l]
-        cs = [int(c) for c in self.coords]
-
-        def lin(y):
-            return mpmath.fsum(l[j] * y[c] for j, c in enumerate(cs)) + l[-1]
-
-        def mF(y, tau):
-            F, _ = curve(y)
-            return mpmath.matrix(list(F) + [y[nx] * lin(y) - tau[0]])
-
-        def mJ(y, tau):
-            _, Jc = curve(y)
-            J = mpmath.matrix(nx + 1, nx + 1)
-            for i in range(nx):
-                for j in range(nx + 1):
-                    J[i, j] = Jc[i, j]
-            for j, c in enumerate(cs):
-                J[nx, c] = y[nx] * l[j]
-            J[nx, nx] = lin(y)
-            return J
-
-        def mP(y, tau):
-            JP = mpmath.matrix(nx + 1, 1)
-            JP[nx, 0] = -1
-            return JP
-
-        return mF, mJ, mP
+           "distinct_points", "coinciding", "trace_witnesses", "complete_witnesses", "polish", "compute_trace",
+           "verify_solution_completeness", "random_direction", "ChartPencilSystem", "coordinate_chart",
+           "slice_to_chart", "slice_from_chart"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -307,7 +90,11 @@ class TraceTestOptions:
     * ``polish_condition`` [1e6]: points of S, S+ and S- with a larger condition number are refined in arbitrary
       precision before the sums (:func:`polish`; 0 or None: never);
     * ``solve`` [SolveOptions(retry_mpmath=False)]: tracking options of the monodromy loops and moves;
-    * ``pencil`` [SolveOptions()]: tracking options of the pencil paths (arbitrary-precision retries included).
+    * ``pencil`` [SolveOptions()]: tracking options of the pencil paths (arbitrary-precision retries included);
+    * ``chart_retrack`` [20131]: seed of a random chart of projective space in which the pencil paths lost in
+      affine coordinates are tracked again (:class:`ChartPencilSystem`: the same pencil, so a point of very large
+      norm is an ordinary point there), their endpoints mapped back; None: never (systems whose equations are not
+      all quadratic are never re-tracked so).
     """
 
     eps: float = 0.1
@@ -322,6 +109,7 @@ class TraceTestOptions:
     polish_condition: float = 1e6
     solve: SolveOptions = field(default_factory=lambda: SolveOptions(retry_mpmath=False))
     pencil: SolveOptions = field(default_factory=SolveOptions)
+    chart_retrack: int | None = 20131
 
     def to_dict(self) -> dict:
         d = {k: v for k, v in asdict(self).items() if k not in ("solve", "pencil")}
@@ -383,6 +171,7 @@ class TraceTestResult:
     seed: int
     seconds: float
     coordinates: np.ndarray | None = None
+    chart: np.ndarray | None = None  # the chart of :func:`coordinate_chart` W10 was found on (None: affine)
 
     @property
     def status(self) -> str:
@@ -730,6 +519,32 @@ def polish(system, parameters, Y, threshold: float = 1e6, dps: int = 40, iterati
     return Y, int(idx.size), float(np.max(cond))
 
 
+def _retrack_in_chart(system, p0, q0, l, cs, S, paths, tau, o, seed):
+    """The pencil paths of ``paths`` (from the rows of S to tau) that were lost, tracked again on a random chart
+    (``o.chart_retrack``, :class:`ChartPencilSystem`) and, when they end regular at a finite point, replaced by
+    that (mapped back to affine coordinates, ``retried`` = "chart").  Returns (paths, lost, rescued)."""
+    lost = [i for i, p in enumerate(paths) if p.status != SUCCESS]
+    degrees = getattr(system, "degrees", None)
+    if not lost or o.chart_retrack is None or degrees is None or any(d != 2 for d in degrees):
+        return paths, len(lost), 0
+    from .projective import HomogenizedQuadratic, _chart, from_chart, to_chart
+
+    hom = HomogenizedQuadratic(system, _chart(system.n, o.chart_retrack))
+    v = np.asarray(q0, dtype=complex) - np.asarray(p0, dtype=complex)
+    cp = ChartPencilSystem(hom, p0, v, l, cs)
+    Sc = np.concatenate([to_chart(S[lost, :-1], hom.c), S[lost, -1:]], axis=1)
+    out, rescued = list(paths), 0
+    for i, p in zip(lost, _track(cp, Sc, [0.0], [tau], o.pencil, seed)):
+        if p.status != SUCCESS:
+            continue
+        x, ratio = from_chart(p.endpoint[None, :-1])
+        if ratio[0] > 1e-12:
+            out[i] = replace(p, index=paths[i].index, endpoint=np.concatenate([x[0], p.endpoint[-1:]]),
+                             retried="chart")
+            rescued += 1
+    return out, len(lost), rescued
+
+
 def compute_trace(system, p0, q0, l, W01, W10, options: TraceTestOptions | None = None, seed: int = 0,
                   gamma=None, keep_endpoints: bool = False, coordinates=None) -> TraceResult:
     """Track S = (W01 x {0}) + W10 along the pencil s l(x) = tau to +-eps gamma and evaluate the trace
@@ -752,8 +567,12 @@ def compute_trace(system, p0, q0, l, W01, W10, options: TraceTestOptions | None 
         rec = {"attempt": attempt, "gamma": {"re": g.real, "im": g.imag}}
         for sign, name in ((1.0, "plus"), (-1.0, "minus")):
             paths = _track(pencil, S, [0.0], [sign * o.eps * g], o.pencil, seed + attempt)
+            paths, lost, rescued = _retrack_in_chart(system, p0, q0, l, cs, S, paths, sign * o.eps * g, o,
+                                                     seed + attempt)
             X, counts, good = _regular_distinct(paths, o.pencil.duplicate_tol)
             rec[name] = counts
+            if lost:
+                rec.setdefault("chart_retracks", {})[name] = {"lost_in_affine": lost, "regular_in_chart": rescued}
             ends.append(X)
             ok &= good
         outcomes.append(rec)
@@ -787,7 +606,8 @@ def compute_trace(system, p0, q0, l, W01, W10, options: TraceTestOptions | None 
 
 
 def verify_solution_completeness(system, p0, W01, seed: int = 0, options: TraceTestOptions | None = None,
-                                 verbose: bool = False, coordinates=None, start=None) -> TraceTestResult:
+                                 verbose: bool = False, coordinates=None, start=None,
+                                 chart: int | None = None) -> TraceTestResult:
     """Trace test of the solution set W01 of ``system`` at parameters p0 (module doc): W10 by
     :func:`trace_witnesses`, then :func:`compute_trace`.  ``result.status`` is "passed", "failed" or
     "undecided".
@@ -797,12 +617,33 @@ def verify_solution_completeness(system, p0, W01, seed: int = 0, options: TraceT
     projection separates the solutions (checked on W01; then C -> C' is birational and witness sets
     correspond); useful when some unknowns (e.g. ones determined linearly by the others) have poles along the
     curve and so raise its degree, and hence the size of W10.  ``start``: known points of W10 (see
-    :func:`trace_witnesses`)."""
+    :func:`trace_witnesses`; with ``chart``, a pair (points, the hyperplane l they lie on)).
+
+    ``chart`` (a seed; systems whose equations are all quadratic): W10 is found on a random chart of projective
+    space (:func:`coordinate_chart`, :class:`.projective.HomogenizedQuadratic`), where witness points of very
+    large norm are ordinary points (DGP m = 4: a point of norm 1.7e4 that monodromy in affine coordinates never
+    reached, and without which the trace failed), then mapped back (:func:`slice_from_chart`); the trace is
+    computed in affine coordinates as always."""
     o = options or TraceTestOptions()
     t0 = time.perf_counter()
-    W10, q0, l, rec = trace_witnesses(system, p0, W01, seed=seed, options=o, verbose=verbose, coordinates=coordinates,
-                                      start=start)
-    tr = compute_trace(system, p0, q0, l, W01, W10, o, seed=seed, coordinates=coordinates)
     cs = _coordinates(system, coordinates, W01)
+    c = None
+    if chart is None:
+        W10, q0, l, rec = trace_witnesses(system, p0, W01, seed=seed, options=o, verbose=verbose,
+                                          coordinates=coordinates, start=start)
+    else:
+        from .projective import HomogenizedQuadratic, to_chart
+
+        c = coordinate_chart(system.n, cs, chart)
+        st = None
+        if start is not None:
+            if not isinstance(start, tuple):
+                raise ValueError("with a chart, start must be a pair (points, the hyperplane l they lie on)")
+            st = slice_to_chart(start[0], start[1], c, cs)
+        W10c, q0, lc, rec = trace_witnesses(HomogenizedQuadratic(system, c), p0, to_chart(W01, c), seed=seed,
+                                            options=o, verbose=verbose, coordinates=np.concatenate([[0], 1 + cs]),
+                                            start=st)
+        W10, l = slice_from_chart(W10c, lc, c, cs)
+    tr = compute_trace(system, p0, q0, l, W01, W10, o, seed=seed, coordinates=coordinates)
     return TraceTestResult(trace=tr, q0=q0, l=l, W10=W10, witnesses=rec, seed=seed, seconds=time.perf_counter() - t0,
-                           coordinates=cs)
+                           coordinates=cs, chart=c)
