@@ -398,3 +398,31 @@ def test_lost_pencil_paths_are_tracked_again_on_a_chart():
     none, lost, rescued = _retrack_in_chart(S, p, res.q0, res.l, np.arange(S.n), P, spoiled, 0.5j,
                                             TraceTestOptions(chart_retrack=None), 0)
     assert (lost, rescued) == (1, 0) and none[1].status == "step_too_small"
+
+
+def test_mp_evaluators_of_the_trace_systems_match_the_float_ones():
+    """mp_functions (arbitrary-precision polish) of the slice, the pencil and the chart pencil agree with their
+    floating-point evaluators (values, Jacobians, parameter derivatives) at an arbitrary point."""
+    import mpmath
+
+    from cdpr_algebra.homotopy.projective import HomogenizedQuadratic, _chart
+    from cdpr_algebra.homotopy.trace_test import ChartPencilSystem
+
+    fam = fast_family(3)
+    p, X, _ = load_instance(generic_path(3))
+    rng = np.random.default_rng(0)
+    v = rng.normal(size=p.size) + 0.5j * rng.normal(size=p.size)
+    l = rng.normal(size=13) + 1j * rng.normal(size=13)
+    y = np.concatenate([X[0], [0.3]])[None, :] + 0.01
+    h = HomogenizedQuadratic(fam, _chart(fam.n, 3))
+    yc = np.concatenate([[0.9], 0.9 * X[0], [0.3]])[None, :]
+    tau = np.array([0.2 + 0.1j])
+    for sysm, par, yy in ((TraceSliceSystem(fam, p, v, list(range(12))), l, y),
+                          (TracePencilSystem(fam, p, v, l, list(range(12))), tau, y),
+                          (ChartPencilSystem(h, p, v, l, list(range(12))), tau, yc)):
+        G, J, JP = sysm.evaluate_all(yy, par)
+        mF, mJ, mP = sysm.mp_functions()
+        ym, pm = [mpmath.mpc(complex(a)) for a in yy[0]], [mpmath.mpc(complex(a)) for a in par]
+        np.testing.assert_allclose(np.array(mF(ym, pm).tolist(), dtype=complex).ravel(), G[0], atol=1e-12)
+        np.testing.assert_allclose(np.array(mJ(ym, pm).tolist(), dtype=complex), J[0], atol=1e-12)
+        np.testing.assert_allclose(np.array(mP(ym, pm).tolist(), dtype=complex), JP[0], atol=1e-12)

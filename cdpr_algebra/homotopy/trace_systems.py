@@ -80,6 +80,18 @@ class _CurveSystem:
         return curve
 
 
+def _bordered(Jc, nx):
+    """An (nx + 1) x (nx + 1) mpmath matrix whose first nx rows are the curve's Jacobian Jc (the last row is the
+    caller's: the slice or the pencil)."""
+    import mpmath
+
+    J = mpmath.matrix(nx + 1, nx + 1)
+    for i in range(nx):
+        for j in range(nx + 1):
+            J[i, j] = Jc[i, j]
+    return J
+
+
 class TraceSliceSystem(_CurveSystem):
     """[F(x; p0 + s v); l . (x, 1)] in the unknowns (x, s) (n + 1), parameters l (n + 1): C cut by l(x) = 0.
 
@@ -143,11 +155,7 @@ class TraceSliceSystem(_CurveSystem):
             return mpmath.matrix(list(F) + [mpmath.fsum(l[j] * y[c] for j, c in enumerate(cs)) + l[k]])
 
         def mJ(y, l):
-            _, Jc = curve(y)
-            J = mpmath.matrix(nx + 1, nx + 1)
-            for i in range(nx):
-                for j in range(nx + 1):
-                    J[i, j] = Jc[i, j]
+            J = _bordered(curve(y)[1], nx)
             for j, c in enumerate(cs):
                 J[nx, c] = l[j]
             return J
@@ -164,7 +172,9 @@ class TraceSliceSystem(_CurveSystem):
 
 class TracePencilSystem(_CurveSystem):
     """[F(x; p0 + s v); s l . (x, 1) - tau] in the unknowns (x, s), one parameter tau: C cut by the pencil member
-    s l(x) = tau; tau = 0 is the union (W01 x {0}) + W10."""
+    s l(x) = tau; tau = 0 is the union (W01 x {0}) + W10.  (Subclasses weight tau by an unknown, ``_tau_column``.)"""
+
+    _tau_column = None  # tau multiplies this unknown (None: 1)
 
     def __init__(self, system, p0, v, l, coordinates=None):
         super().__init__(system, p0, v)
@@ -181,32 +191,40 @@ class TracePencilSystem(_CurveSystem):
         tau = np.asarray(tau, dtype=complex)
         return np.broadcast_to(tau.reshape(-1) if tau.ndim <= 1 else tau[:, 0], (N,))
 
+    def _weight(self, y):
+        """The factor of tau in the pencil equation at the rows of y."""
+        y = np.atleast_2d(y)
+        return np.ones(len(y), dtype=complex) if self._tau_column is None else y[:, self._tau_column]
+
+    def _member(self, x, s, tau):
+        return s * (x[:, self.coords] @ self.l[:-1] + self.l[-1]) - self._tau(tau, len(x)) * self._weight(x)
+
     def evaluate(self, y, tau=None):
         y, x, s, F, _ = self._curve(y, False)
-        lx = x[:, self.coords] @ self.l[:-1] + self.l[-1]
-        return np.concatenate([F, (s * lx - self._tau(tau, len(y)))[:, None]], axis=1)
+        return np.concatenate([F, self._member(x, s, tau)[:, None]], axis=1)
 
     def evaluate_and_jacobian(self, y, tau=None):
         y, x, s, F, Jc = self._curve(y, True)
         N = len(y)
-        lx = x[:, self.coords] @ self.l[:-1] + self.l[-1]
-        G = np.concatenate([F, (s * lx - self._tau(tau, N))[:, None]], axis=1)
+        G = np.concatenate([F, self._member(x, s, tau)[:, None]], axis=1)
         J = np.zeros((N, self.neq, self.n), dtype=complex)
         J[:, :self.nx, :] = Jc
         J[:, self.nx, self.coords] = s[:, None] * self.l[None, :-1]
-        J[:, self.nx, self.nx] = lx
+        if self._tau_column is not None:
+            J[:, self.nx, self._tau_column] -= self._tau(tau, N)
+        J[:, self.nx, self.nx] = x[:, self.coords] @ self.l[:-1] + self.l[-1]
         return G, J
 
     def evaluate_all(self, y, tau=None):
         G, J = self.evaluate_and_jacobian(y, tau)
         JP = np.zeros((len(G), self.neq, 1), dtype=complex)
-        JP[:, self.nx, 0] = -1.0
+        JP[:, self.nx, 0] = -self._weight(y)
         return G, J, JP
 
     def evaluate_directional(self, y, tau, dtau):
         G, J = self.evaluate_and_jacobian(y, tau)
         Gt = np.zeros_like(G)
-        Gt[:, self.nx] = -self._tau(dtau, len(G))
+        Gt[:, self.nx] = -self._tau(dtau, len(G)) * self._weight(y)
         return G, J, Gt
 
     def mp_functions(self):
@@ -216,28 +234,30 @@ class TracePencilSystem(_CurveSystem):
         nx = self.nx
         l = [mpmath.mpc(complex(c)) for c in self.l]
         cs = [int(c) for c in self.coords]
+        col = self._tau_column
 
         def lin(y):
             return mpmath.fsum(l[j] * y[c] for j, c in enumerate(cs)) + l[-1]
 
+        def weight(y):
+            return 1 if col is None else y[col]
+
         def mF(y, tau):
             F, _ = curve(y)
-            return mpmath.matrix(list(F) + [y[nx] * lin(y) - tau[0]])
+            return mpmath.matrix(list(F) + [y[nx] * lin(y) - tau[0] * weight(y)])
 
         def mJ(y, tau):
-            _, Jc = curve(y)
-            J = mpmath.matrix(nx + 1, nx + 1)
-            for i in range(nx):
-                for j in range(nx + 1):
-                    J[i, j] = Jc[i, j]
+            J = _bordered(curve(y)[1], nx)
             for j, c in enumerate(cs):
                 J[nx, c] = y[nx] * l[j]
+            if col is not None:
+                J[nx, col] -= tau[0]
             J[nx, nx] = lin(y)
             return J
 
         def mP(y, tau):
             JP = mpmath.matrix(nx + 1, 1)
-            JP[nx, 0] = -1
+            JP[nx, 0] = -weight(y)
             return JP
 
         return mF, mJ, mP
@@ -251,6 +271,8 @@ class ChartPencilSystem(TracePencilSystem):
     points, so a path that is lost in affine coordinates (one of very large norm) can be tracked here and its
     endpoint mapped back (:func:`.projective.from_chart`)."""
 
+    _tau_column = 0
+
     def __init__(self, hom, p0, v, l, coordinates=None):
         cs = np.arange(hom.n - 1) if coordinates is None else np.asarray(coordinates, dtype=int)
         l = np.asarray(l, dtype=complex)
@@ -258,74 +280,6 @@ class ChartPencilSystem(TracePencilSystem):
             raise ValueError(f"expected {len(cs) + 1} coefficients of l")
         super().__init__(hom, p0, v, np.concatenate([[l[-1]], l[:-1], [0.0]]), np.concatenate([[0], 1 + cs]))
         self.name = f"trace_pencil_chart({getattr(hom, 'name', 'system')})"
-
-    def _lh(self, x):
-        return x[:, self.coords] @ self.l[:-1]
-
-    def evaluate(self, y, tau=None):
-        y, x, s, F, _ = self._curve(y, False)
-        return np.concatenate([F, (s * self._lh(x) - self._tau(tau, len(y)) * x[:, 0])[:, None]], axis=1)
-
-    def evaluate_and_jacobian(self, y, tau=None):
-        y, x, s, F, Jc = self._curve(y, True)
-        N = len(y)
-        t = self._tau(tau, N)
-        lx = self._lh(x)
-        G = np.concatenate([F, (s * lx - t * x[:, 0])[:, None]], axis=1)
-        J = np.zeros((N, self.neq, self.n), dtype=complex)
-        J[:, :self.nx, :] = Jc
-        J[:, self.nx, self.coords] = s[:, None] * self.l[None, :-1]
-        J[:, self.nx, 0] -= t
-        J[:, self.nx, self.nx] = lx
-        return G, J
-
-    def evaluate_all(self, y, tau=None):
-        G, J = self.evaluate_and_jacobian(y, tau)
-        y = np.atleast_2d(np.asarray(y, dtype=complex))
-        JP = np.zeros((len(G), self.neq, 1), dtype=complex)
-        JP[:, self.nx, 0] = -y[:, 0]
-        return G, J, JP
-
-    def evaluate_directional(self, y, tau, dtau):
-        G, J = self.evaluate_and_jacobian(y, tau)
-        y = np.atleast_2d(np.asarray(y, dtype=complex))
-        Gt = np.zeros_like(G)
-        Gt[:, self.nx] = -self._tau(dtau, len(G)) * y[:, 0]
-        return G, J, Gt
-
-    def mp_functions(self):
-        import mpmath
-
-        curve = self._mp_curve()
-        nx = self.nx
-        l = [mpmath.mpc(complex(c)) for c in self.l]
-        cs = [int(c) for c in self.coords]
-
-        def lin(y):
-            return mpmath.fsum(l[j] * y[c] for j, c in enumerate(cs))
-
-        def mF(y, tau):
-            F, _ = curve(y)
-            return mpmath.matrix(list(F) + [y[nx] * lin(y) - tau[0] * y[0]])
-
-        def mJ(y, tau):
-            _, Jc = curve(y)
-            J = mpmath.matrix(nx + 1, nx + 1)
-            for i in range(nx):
-                for j in range(nx + 1):
-                    J[i, j] = Jc[i, j]
-            for j, c in enumerate(cs):
-                J[nx, c] = y[nx] * l[j]
-            J[nx, 0] -= tau[0]
-            J[nx, nx] = lin(y)
-            return J
-
-        def mP(y, tau):
-            JP = mpmath.matrix(nx + 1, 1)
-            JP[nx, 0] = -y[0]
-            return JP
-
-        return mF, mJ, mP
 
 
 def coordinate_chart(n: int, coordinates, seed: int) -> np.ndarray:
