@@ -68,7 +68,8 @@ from cdpr_algebra.homotopy.tracker import TrackerOptions  # noqa: E402
 from cdpr_algebra.homotopy.projective import HomogenizedQuadratic  # noqa: E402
 from cdpr_algebra.homotopy.trace_test import (TraceSliceSystem, TraceTestOptions,  # noqa: E402
                                               coinciding, complete_witnesses, compute_trace, distinct_points,
-                                              slice_from_chart, slice_to_chart, verify_solution_completeness)
+                                              chart_coordinates, slice_from_chart, slice_to_chart,
+                                              verify_solution_completeness)
 
 FORMAT = "cdpr_algebra.dgp_generic_completeness"
 FORMAT_VERSION = 1
@@ -191,8 +192,8 @@ def resume_trace_test(m, p, X, prev, seed, grow=True, verbose=True):
     gseed = seed + 1000 * (1 + len(prev.get("history", [])))
     if grow and "chart" in prev:  # grow on the recorded chart (see run_trace_test), then map back
         c = _uc(prev["chart"]["c"])
-        Wc, lc = slice_to_chart(W10, l, c, cs)
-        sc = TraceSliceSystem(HomogenizedQuadratic(fam, c), p, q0 - p, np.concatenate([[0], 1 + np.asarray(cs)]))
+        Wc, lc = slice_to_chart(W10, l, c)
+        sc = TraceSliceSystem(HomogenizedQuadratic(fam, c), p, q0 - p, chart_coordinates(cs))
         Wc, lc, rec = complete_witnesses(sc, lc, Wc, o, seed=gseed, verbose=verbose)
         W, l = slice_from_chart(Wc, lc, c, cs)
     elif grow:

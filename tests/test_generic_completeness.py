@@ -316,7 +316,7 @@ def test_slice_chart_round_trip():
     res = verify_solution_completeness(S, r.parameters, r.solutions, seed=2, coordinates=[0, 1])
     c = coordinate_chart(S.n, [0, 1], 7)
     assert c[3] == 0 and np.all(c[:3] != 0)
-    Wc, lc = slice_to_chart(res.W10, res.l, c, [0, 1])
+    Wc, lc = slice_to_chart(res.W10, res.l, c)
     W, l = slice_from_chart(Wc, lc, c, [0, 1])
     np.testing.assert_allclose(W, res.W10, rtol=1e-12, atol=1e-12)
     lc2 = lc + np.array([0, 0, 0, 0.7 - 0.2j])  # a constant k: k = k c . Y on the chart

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["TraceSliceSystem", "TracePencilSystem", "ChartPencilSystem", "coordinate_chart", "slice_to_chart",
-           "slice_from_chart"]
+__all__ = ["TraceSliceSystem", "TracePencilSystem", "ChartPencilSystem", "chart_coordinates", "chart_form",
+           "curve_to_chart", "curve_from_chart", "coordinate_chart", "slice_to_chart", "slice_from_chart"]
 
 
 def _crandn(rng, *shape):
@@ -278,8 +278,20 @@ class ChartPencilSystem(TracePencilSystem):
         l = np.asarray(l, dtype=complex)
         if l.shape != (len(cs) + 1,):
             raise ValueError(f"expected {len(cs) + 1} coefficients of l")
-        super().__init__(hom, p0, v, np.concatenate([[l[-1]], l[:-1], [0.0]]), np.concatenate([[0], 1 + cs]))
+        super().__init__(hom, p0, v, chart_form(l), chart_coordinates(cs))
         self.name = f"trace_pencil_chart({getattr(hom, 'name', 'system')})"
+
+
+def chart_coordinates(coordinates) -> np.ndarray:
+    """Indices in chart unknowns Y = (y0, y) of y0 and of the given ``coordinates`` of x."""
+    return np.concatenate([[0], 1 + np.asarray(coordinates, dtype=int)])
+
+
+def chart_form(l) -> np.ndarray:
+    """An affine form l = (l_1..l_k, constant) on x_coordinates as a form on Y at :func:`chart_coordinates`: its
+    homogenization (constant, l_1..l_k) on (y0, y_coordinates), with constant term 0."""
+    l = np.asarray(l, dtype=complex)
+    return np.concatenate([[l[-1]], l[:-1], [0.0]])
 
 
 def coordinate_chart(n: int, coordinates, seed: int) -> np.ndarray:
@@ -289,23 +301,34 @@ def coordinate_chart(n: int, coordinates, seed: int) -> np.ndarray:
     coordinates x_coordinates: the W10 of the trace test in such a chart is the W10 of an affine hyperplane
     (:func:`slice_from_chart`).  (A chart that mixes in the other unknowns, e.g. tensions with poles along the
     curve, changes the curve that the hyperplanes cut: DGP m = 4, over 2700 points and growing, against 1888.)"""
-    cs = np.asarray(coordinates, dtype=int)
     rng = np.random.default_rng(seed)
     c = np.zeros(n + 1, dtype=complex)
-    idx = np.concatenate([[0], 1 + cs])
+    idx = chart_coordinates(coordinates)
     c[idx] = _crandn(rng, len(idx))
     return c / np.linalg.norm(c)
 
 
-def slice_to_chart(W10, l, c, coordinates):
-    """Points (x, s) of the affine slice l(x_coordinates) = 0 -> (points (Y, s) on the chart c, the same hyperplane
-    as a form on (y0, y_coordinates) plus constant 0)."""
+def curve_to_chart(Y, c) -> np.ndarray:
+    """Points (x, s) of the curve -> (Y, s) on the chart c (:func:`.projective.to_chart` of x, s kept)."""
     from .projective import to_chart
 
-    W10 = np.asarray(W10, dtype=complex)
-    l = np.asarray(l, dtype=complex)
-    Wc = np.concatenate([to_chart(W10[:, :-1], c), W10[:, -1:]], axis=1)
-    return Wc, np.concatenate([[l[-1]], l[:-1], [0.0]])
+    Y = np.asarray(Y, dtype=complex)
+    return np.concatenate([to_chart(Y[:, :-1], c), Y[:, -1:]], axis=1)
+
+
+def curve_from_chart(Yc) -> tuple[np.ndarray, np.ndarray]:
+    """Inverse of :func:`curve_to_chart`: ((x, s) rows, |y0| / |y| per row, 0 at infinity)."""
+    from .projective import from_chart
+
+    Yc = np.asarray(Yc, dtype=complex)
+    x, ratio = from_chart(Yc[:, :-1])
+    return np.concatenate([x, Yc[:, -1:]], axis=1), ratio
+
+
+def slice_to_chart(W10, l, c):
+    """Points (x, s) of the affine slice l(x_coordinates) = 0 -> (points (Y, s) on the chart c, the same hyperplane
+    as a form on (y0, y_coordinates) plus constant 0, :func:`chart_form`)."""
+    return curve_to_chart(W10, c), chart_form(l)
 
 
 def slice_from_chart(Wc, lc, c, coordinates):
@@ -313,18 +336,14 @@ def slice_from_chart(Wc, lc, c, coordinates):
     lc . (y0, y_coordinates, 1) = 0 -> (points (x, s), the affine form l on x_coordinates).  On the chart the
     constant is constant x c . Y, and c is zero off (y0, y_coordinates), so the slice is the affine hyperplane
     (lc_0 + k c_0) + sum_j (lc_j + k c_j) x_j = 0 (k the constant)."""
-    from .projective import from_chart
-
-    cs = np.asarray(coordinates, dtype=int)
-    idx = np.concatenate([[0], 1 + cs])
+    idx = chart_coordinates(coordinates)
     c = np.asarray(c, dtype=complex)
     off = np.setdiff1d(np.arange(len(c)), idx)
     if np.any(c[off] != 0):
         raise ValueError("the chart must be zero off y0 and the trace coordinates (coordinate_chart)")
     lc = np.asarray(lc, dtype=complex)
     L = lc[:-1] + lc[-1] * c[idx]
-    Wc = np.asarray(Wc, dtype=complex)
-    x, ratio = from_chart(Wc[:, :-1])
+    W, ratio = curve_from_chart(Wc)
     if len(ratio) and np.min(ratio) <= 1e-12:
         raise ValueError("a witness point is at infinity (y0 = 0) on the chart")
-    return np.concatenate([x, Wc[:, -1:]], axis=1), np.concatenate([L[1:], [L[0]]])
+    return W, np.concatenate([L[1:], [L[0]]])

@@ -64,12 +64,13 @@ from .monodromy import MonodromyOptions, monodromy_solve
 from .results import STATUSES, SUCCESS
 from .endgame import track_paths
 from .trace_systems import (ChartPencilSystem, TracePencilSystem, TraceSliceSystem, _crandn,  # noqa: F401
-                            coordinate_chart, slice_from_chart, slice_to_chart)
+                            chart_coordinates, coordinate_chart, curve_from_chart, curve_to_chart,
+                            slice_from_chart, slice_to_chart)
 
 __all__ = ["TraceSliceSystem", "TracePencilSystem", "TraceTestOptions", "TraceResult", "TraceTestResult",
            "distinct_points", "coinciding", "trace_witnesses", "complete_witnesses", "polish", "compute_trace",
-           "verify_solution_completeness", "random_direction", "ChartPencilSystem", "coordinate_chart",
-           "slice_to_chart", "slice_from_chart"]
+           "verify_solution_completeness", "random_direction", "ChartPencilSystem", "chart_coordinates",
+           "coordinate_chart", "slice_to_chart", "slice_from_chart"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -527,20 +528,18 @@ def _retrack_in_chart(system, p0, q0, l, cs, S, paths, tau, o, seed):
     degrees = getattr(system, "degrees", None)
     if not lost or o.chart_retrack is None or degrees is None or any(d != 2 for d in degrees):
         return paths, len(lost), 0
-    from .projective import HomogenizedQuadratic, _chart, from_chart, to_chart
+    from .projective import HomogenizedQuadratic, _chart
 
     hom = HomogenizedQuadratic(system, _chart(system.n, o.chart_retrack))
     v = np.asarray(q0, dtype=complex) - np.asarray(p0, dtype=complex)
     cp = ChartPencilSystem(hom, p0, v, l, cs)
-    Sc = np.concatenate([to_chart(S[lost, :-1], hom.c), S[lost, -1:]], axis=1)
     out, rescued = list(paths), 0
-    for i, p in zip(lost, _track(cp, Sc, [0.0], [tau], o.pencil, seed)):
+    for i, p in zip(lost, _track(cp, curve_to_chart(S[lost], hom.c), [0.0], [tau], o.pencil, seed)):
         if p.status != SUCCESS:
             continue
-        x, ratio = from_chart(p.endpoint[None, :-1])
+        x, ratio = curve_from_chart(p.endpoint[None, :])
         if ratio[0] > 1e-12:
-            out[i] = replace(p, index=paths[i].index, endpoint=np.concatenate([x[0], p.endpoint[-1:]]),
-                             retried="chart")
+            out[i] = replace(p, index=paths[i].index, endpoint=x[0], retried="chart")
             rescued += 1
     return out, len(lost), rescued
 
@@ -639,9 +638,9 @@ def verify_solution_completeness(system, p0, W01, seed: int = 0, options: TraceT
         if start is not None:
             if not isinstance(start, tuple):
                 raise ValueError("with a chart, start must be a pair (points, the hyperplane l they lie on)")
-            st = slice_to_chart(start[0], start[1], c, cs)
+            st = slice_to_chart(start[0], start[1], c)
         W10c, q0, lc, rec = trace_witnesses(HomogenizedQuadratic(system, c), p0, to_chart(W01, c), seed=seed,
-                                            options=o, verbose=verbose, coordinates=np.concatenate([[0], 1 + cs]),
+                                            options=o, verbose=verbose, coordinates=chart_coordinates(cs),
                                             start=st)
         W10, l = slice_from_chart(W10c, lc, c, cs)
     tr = compute_trace(system, p0, q0, l, W01, W10, o, seed=seed, coordinates=coordinates)
