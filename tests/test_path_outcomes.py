@@ -78,6 +78,27 @@ def test_tiny_step_budget_fails_paths_and_counts_add_up():
     assert res.solutions == ()
 
 
+def test_chart_path_failed_before_the_first_sample_is_not_tracked_again():
+    """A path that fails in the chart before t = te * sample_ratio fails with the track's own reason and t: the
+    endgame's first segment would retrack the same stretch from the same point, and is not run (its steps would
+    show)."""
+    from cdpr_algebra.homotopy.endgame import _finish
+    from cdpr_algebra.homotopy.projective import to_chart
+    from cdpr_algebra.homotopy.start_systems import parameter_homotopy
+    from cdpr_algebra.homotopy.tracker import TrackerOptions, track_segment
+
+    (hom,) = parameter_homotopy(_family(), P1, np.array([0.0, 1.0]), rng=np.random.default_rng(0))
+    ph = hom.projective()
+    te = PROJECTIVE.endgame.endgame_start
+    seg = track_segment(ph, to_chart(_start(P1), ph.chart), 1.0, te, PROJECTIVE.tracker)
+    assert np.all(seg.status == "success")
+    budget = TrackerOptions(max_steps=2)
+    x, status, _, _, t, steps, _ = _finish(ph, seg.x, PROJECTIVE, budget)
+    assert list(status) == ["too_many_steps"] * 4
+    assert np.all(np.abs(t) > te * PROJECTIVE.endgame.sample_ratio) and np.all(np.abs(t) < te)
+    assert list(steps) == [2] * 4
+
+
 @pytest.fixture(scope="module")
 def test1():
     from cdpr_algebra.model.robot import load_robot

@@ -494,6 +494,8 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
     if chart is not None and gi.size:  # a regular point of the chart may lie at infinity (y0 = 0)
         inf, _, _ = decide_in_chart(out_x[gi], acc[gi], o=eo)
         status[gi[inf]] = AT_INFINITY
+    if chart is not None:
+        _stopped_before_first_sample(seg, np.arange(N), status, out_x, tfin, te, eo)
     rest = np.flatnonzero(status == "")
     if rest.size and proj is not None:
         # first the plain track to t = 0 in the chart: a regular point there with y0 nonzero beyond its accuracy
@@ -512,6 +514,7 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
                 out_x[gi] = Yr[fin_c][:, 1:] / Yr[fin_c][:, :1]
             status[gi] = SUCCESS
             acc[gi] = upd[fin_c]
+        _stopped_before_first_sample(seg_c, rest, status, out_x, tfin, te, eo, lambda Y: Y[:, 1:] / Y[:, :1])
         rest = np.flatnonzero(status == "")
     if rest.size and not eo.cauchy:  # no endgame asked for: these paths stay undecided (failed)
         status[rest] = ENDGAME_FAILED
@@ -551,6 +554,22 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
         acc[rest] = a_
         tfin[rest] = np.where(np.isin(st, (SINGULAR, SUCCESS)), 0.0, eg.t)
     return out_x, status, wind, acc, tfin, steps, order
+
+
+def _stopped_before_first_sample(seg, idx, status, out_x, tfin, te, eo: EndgameOptions, to_out=lambda Y: Y):
+    """Paths ``idx`` of a chart track from t = te towards 0 (``seg``) that failed before reaching the endgame's first
+    sample radius te * ``sample_ratio``: the endgame would track the same path from the same point through the same
+    stretch with the same step control (its first segment, te -> te * ratio), where double precision has already
+    run out (condition 1e10-1e11 near the singular sets at infinity, measured on seed 000 Test 3), so they fail
+    here, with the track's reason, at the t where it stopped, instead of failing a second time in the endgame.
+    Sets their ``status``, ``out_x`` (the last point, ``to_out`` of the chart point: the identity, or the map back
+    to affine coordinates) and ``tfin``."""
+    early = np.flatnonzero((seg.status != SUCCESS) & (np.abs(seg.t) > te * eo.sample_ratio) & (status[idx] == ""))
+    ii = idx[early]
+    status[ii] = seg.status[early]
+    with np.errstate(all="ignore"):
+        out_x[ii] = to_out(seg.x[early])
+    tfin[ii] = seg.t[early]
 
 
 def _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order=None):
