@@ -38,7 +38,8 @@ import numba as nb
 from numba import types as nbt
 
 __all__ = ["available", "track_kernel", "track_segment_compiled", "lu_factor_sparse_lead", "lu_apply_sparse_lead",
-           "dense_factor", "dense_apply", "solve_with", "homogenized_eval", "FACTOR_SIG", "APPLY_SIG"]
+           "dense_factor", "dense_apply", "solve_with", "homogenized_eval", "homogenized_workspace", "FACTOR_SIG",
+           "APPLY_SIG"]
 
 # status codes of the kernel (mapped to the strings of .results by the caller)
 RUNNING, OK, STEP_TOO_SMALL, TOO_MANY_STEPS, DIVERGED = 0, 1, 2, 3, 4
@@ -134,40 +135,38 @@ def dense_apply(J, A, piv, b, out):
 
 
 @nb.njit(cache=True, error_model="numpy")
-def homogenized_eval(fjt, y, p, dp, F, J, Ht, with_ht):
+def homogenized_eval(fj, fjt, y, p, dp, F, J, Ht, with_ht, pa, dpa, V, M):
     """The homogenized system of a system whose equations all have degree 2, on a chart, from the system's own
-    kernel ``fjt`` (see :class:`.projective.HomogenizedQuadratic`, the numpy twin): unknowns y = (y0, y_1..y_n),
+    kernels ``fj`` / ``fjt`` (see :class:`.projective.HomogenizedQuadratic`, the numpy twin): unknowns y = (y0, y_1..y_n),
     parameters p = (the system's parameters, chart c (n + 1)); rows 0..n-1 are F_h(y0, y) = y0^2 F(y / y0) =
     y0^2 C + y0 L y + Q(y), from F at y, -y and 0 (F(y) - F(-y) = 2 L y, F(y) + F(-y) = 2 (C + Q(y))), row n the
     chart c . y - 1.  dF_h/dy = y0 L + DQ(y) from J(y) +- J(-y), dF_h/dy0 = 2 y0 C + L y, and Ht (with
     ``with_ht``) the same combination of the system's Ht at the three points (the chart does not move: dp = 0
-    on its entries).  J must be zero where the system's kernel writes nothing (its caller zeroes it once)."""
+    on its entries).  J must be zero where the system's kernel writes nothing (its caller zeroes it once).
+    Workspace (:func:`homogenized_workspace`, allocated once per track, not per call): pa, dpa (the system's
+    parameters), V (9, n) and M (3, n, n), zeroed once (the kernel rewrites the same entries every call and row 2
+    of V, the origin, stays zero)."""
     n1 = y.shape[0]
     n = n1 - 1
-    ma = p.shape[0] - n1
-    pa = np.empty(ma, np.complex128)
-    dpa = np.empty(ma, np.complex128)
+    ma = pa.shape[0]
     for k in range(ma):
         pa[k] = p[k]
         dpa[k] = dp[k]
-    xp = np.empty(n, np.complex128)
-    xm = np.empty(n, np.complex128)
-    x0 = np.zeros(n, np.complex128)
+    xp, xm, x0 = V[0], V[1], V[2]
+    Fp, Fm, F0 = V[3], V[4], V[5]
+    Hp, Hm, H0 = V[6], V[7], V[8]
+    Jp, Jm, J0 = M[0], M[1], M[2]
     for j in range(n):
         xp[j] = y[j + 1]
         xm[j] = -y[j + 1]
-    Fp = np.empty(n, np.complex128)
-    Fm = np.empty(n, np.complex128)
-    F0 = np.empty(n, np.complex128)
-    Hp = np.zeros(n, np.complex128)
-    Hm = np.zeros(n, np.complex128)
-    H0 = np.zeros(n, np.complex128)
-    Jp = np.zeros((n, n), np.complex128)
-    Jm = np.zeros((n, n), np.complex128)
-    J0 = np.zeros((n, n), np.complex128)
-    fjt(xp, pa, dpa, Fp, Jp, Hp)
-    fjt(xm, pa, dpa, Fm, Jm, Hm)
-    fjt(x0, pa, dpa, F0, J0, H0)
+    if with_ht:
+        fjt(xp, pa, dpa, Fp, Jp, Hp)
+        fjt(xm, pa, dpa, Fm, Jm, Hm)
+        fjt(x0, pa, dpa, F0, J0, H0)
+    else:  # no Ht: the cheaper kernel
+        fj(xp, pa, Fp, Jp)
+        fj(xm, pa, Fm, Jm)
+        fj(x0, pa, F0, J0)
     y0 = y[0]
     for i in range(n):
         L = 0.5 * (Fp[i] - Fm[i])
@@ -184,6 +183,18 @@ def homogenized_eval(fjt, y, p, dp, F, J, Ht, with_ht):
     F[n] = acc
     if with_ht:
         Ht[n] = 0.0
+
+
+@nb.njit(cache=True)
+def homogenized_workspace(n1, mp, hom):
+    """(pa, dpa, V, M) for :func:`homogenized_eval` of a chart system with n1 unknowns and mp parameters (the
+    system's and the chart's); empty when ``hom`` is False."""
+    if not hom:
+        return (np.zeros(0, np.complex128), np.zeros(0, np.complex128), np.zeros((9, 0), np.complex128),
+                np.zeros((3, 0, 0), np.complex128))
+    n = n1 - 1
+    return (np.zeros(mp - n1, np.complex128), np.zeros(mp - n1, np.complex128), np.zeros((9, n), np.complex128),
+            np.zeros((3, n, n), np.complex128))
 
 
 def solve_with(factor, apply, J, b):
@@ -207,18 +218,19 @@ def _norm(v):
         s += v[i].real * v[i].real + v[i].imag * v[i].imag
     return np.sqrt(s)
 
-@nb.njit(cache=True, error_model="numpy")
+@nb.njit(cache=True, error_model="numpy", inline="always")
 def _params(p1, p0, g, t, p, dp):
-    """p(t) = (g t p1 + (1 - t) p0) / (g t + 1 - t) and dp/dt."""
+    """p(t) = (g t p1 + (1 - t) p0) / (g t + 1 - t) and dp/dt (one complex reciprocal, not two divisions per
+    parameter: this runs five times a step)."""
     a = g * t
     b = 1.0 - t
-    s = a + b
+    inv = 1.0 / (a + b)
     for k in range(p.shape[0]):
-        num = a * p1[k] + b * p0[k]
-        p[k] = num / s
-        dp[k] = (g * p1[k] - p0[k]) / s - num * (g - 1.0) / (s * s)
+        pk = (a * p1[k] + b * p0[k]) * inv
+        p[k] = pk
+        dp[k] = (g * p1[k] - p0[k] - pk * (g - 1.0)) * inv
 
-@nb.njit(cache=True, error_model="numpy")
+@nb.njit(cache=True, error_model="numpy", inline="always")
 def _lin(ok, apply, J, A, piv, b, out):
     """out = J^{-1} b from factors of J (NaNs when the factorization failed)."""
     if ok:
@@ -228,33 +240,35 @@ def _lin(ok, apply, J, A, piv, b, out):
             out[i] = np.nan
 
 
-@nb.njit(cache=True, error_model="numpy")
-def _tangent_rhs(fjt, hom, x, t, dt, p1, p0, g, p, dp, F, J, Ht, rhs):
-    """rhs = -H_t dt at (x, t) (fjt also writes F and H_x into F and J; ``hom``: of the homogenized system)."""
+@nb.njit(cache=True, error_model="numpy", inline="always")
+def _tangent_rhs(fj, fjt, hom, x, t, dt, p1, p0, g, p, dp, F, J, Ht, rhs, ws):
+    """rhs = -H_t dt at (x, t) (fjt also writes F and H_x into F and J; ``hom``: of the homogenized system, with
+    the workspace ``ws`` of :func:`homogenized_workspace`)."""
     _params(p1, p0, g, t, p, dp)
     if hom:
-        homogenized_eval(fjt, x, p, dp, F, J, Ht, True)
+        homogenized_eval(fj, fjt, x, p, dp, F, J, Ht, True, ws[0], ws[1], ws[2], ws[3])
     else:
         fjt(x, p, dp, F, J, Ht)
     for i in range(rhs.shape[0]):
         rhs[i] = -Ht[i] * dt
 
 
-@nb.njit(cache=True, error_model="numpy")
-def _newton_rhs(fj, fjt, hom, x, p, F, J, rhs):
-    """rhs = -F(x) at the parameters p (fj also writes H_x into J; ``hom``: of the homogenized system)."""
+@nb.njit(cache=True, error_model="numpy", inline="always")
+def _newton_rhs(fj, fjt, hom, x, p, F, J, rhs, ws):
+    """rhs = -F(x) at the parameters p (fj also writes H_x into J; ``hom``: of the homogenized system, workspace
+    ``ws``)."""
     if hom:
-        homogenized_eval(fjt, x, p, p, F, J, F, False)
+        homogenized_eval(fj, fjt, x, p, p, F, J, F, False, ws[0], ws[1], ws[2], ws[3])
     else:
         fj(x, p, F, J)
     for i in range(rhs.shape[0]):
         rhs[i] = -F[i]
 
 
-@nb.njit(cache=True, error_model="numpy")
-def _stage(fjt, hom, factor, apply, x, t, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k):
+@nb.njit(cache=True, error_model="numpy", inline="always")
+def _stage(fj, fjt, hom, factor, apply, x, t, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k, ws):
     """k = dx/ds = -H_x^{-1} H_t dt at (x, t), factoring H_x in (J, A, piv); True when it is regular."""
-    _tangent_rhs(fjt, hom, x, t, dt, p1, p0, g, p, dp, F, J, Ht, rhs)
+    _tangent_rhs(fj, fjt, hom, x, t, dt, p1, p0, g, p, dp, F, J, Ht, rhs, ws)
     ok = factor(J, A, piv)
     _lin(ok, apply, J, A, piv, rhs, k)
     return ok
@@ -301,6 +315,7 @@ def track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xo
     d2 = np.empty(n, np.complex128)
     d3 = np.empty(n, np.complex128)
     x2 = np.empty(n, np.complex128)
+    ws = homogenized_workspace(n, mp, hom)
     for i in range(N):
         r = i if P1.shape[0] == N else 0
         p1, p0, g = P1[r], P0[r], G[r]
@@ -321,32 +336,32 @@ def track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xo
             ha = min(h, 1.0 - s)
             if not have_k1:
                 if have_lu:
-                    _tangent_rhs(fjt, hom, x, ta + s * dt, dt, p1, p0, g, p, dp, F, Js, Ht, rhs)
+                    _tangent_rhs(fj, fjt, hom, x, ta + s * dt, dt, p1, p0, g, p, dp, F, Js, Ht, rhs, ws)
                     apply(Jc, Ac, pivc, rhs, k1)
                 else:
-                    have_lu = _stage(fjt, hom, factor, apply, x, ta + s * dt, dt, p1, p0, g, p, dp, F, Jc, Ht, Ac, pivc,
-                                     rhs, k1)
+                    have_lu = _stage(fj, fjt, hom, factor, apply, x, ta + s * dt, dt, p1, p0, g, p, dp, F, Jc, Ht, Ac, pivc,
+                                     rhs, k1, ws)
                 have_k1 = True
             for c in range(n):
                 xt[c] = x[c] + 0.5 * ha * k1[c]
-            _stage(fjt, hom, factor, apply, xt, ta + (s + 0.5 * ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k2)
+            _stage(fj, fjt, hom, factor, apply, xt, ta + (s + 0.5 * ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k2, ws)
             for c in range(n):
                 xt[c] = x[c] + 0.5 * ha * k2[c]
-            _stage(fjt, hom, factor, apply, xt, ta + (s + 0.5 * ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k3)
+            _stage(fj, fjt, hom, factor, apply, xt, ta + (s + 0.5 * ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k3, ws)
             for c in range(n):
                 xt[c] = x[c] + ha * k3[c]
-            _stage(fjt, hom, factor, apply, xt, ta + (s + ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k4)
+            _stage(fj, fjt, hom, factor, apply, xt, ta + (s + ha) * dt, dt, p1, p0, g, p, dp, F, J, Ht, A, piv, rhs, k4, ws)
             for c in range(n):
                 xt[c] = x[c] + (ha / 6.0) * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
             sn = s + ha
             _params(p1, p0, g, ta + sn * dt, p, dp)
             # two Newton corrections at t(s + h): a Newton step, then a chord step with the same factors
-            _newton_rhs(fj, fjt, hom, xt, p, F, Jn, rhs)
+            _newton_rhs(fj, fjt, hom, xt, p, F, Jn, rhs, ws)
             okn = factor(Jn, An, pivn)
             _lin(okn, apply, Jn, An, pivn, rhs, d1)
             for c in range(n):
                 xt[c] += d1[c]
-            _newton_rhs(fj, fjt, hom, xt, p, F, Js, rhs)
+            _newton_rhs(fj, fjt, hom, xt, p, F, Js, rhs, ws)
             _lin(okn, apply, Jn, An, pivn, rhs, d2)
             for c in range(n):
                 x2[c] = xt[c] + d2[c]
@@ -358,7 +373,7 @@ def track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xo
             ok = finite and e1 <= ptol and contracting and e2 <= ctol
             if finite and not ok and e1 <= ptol and e2 <= noise_tol:
                 # round-off floor: a third update that does not move away either
-                _newton_rhs(fj, fjt, hom, x2, p, F, Js, rhs)
+                _newton_rhs(fj, fjt, hom, x2, p, F, Js, rhs, ws)
                 _lin(okn, apply, Jn, An, pivn, rhs, d3)
                 e3 = _norm(d3) / scale
                 if np.isfinite(e3) and e3 <= 2.0 * e2 and e3 <= noise_tol:
