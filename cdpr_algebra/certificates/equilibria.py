@@ -41,6 +41,7 @@ for lam).  Over the certified box, in outward-rounded ball arithmetic (python-fl
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -481,15 +482,14 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
 
 BALL_RETRY_MAX = 400  # roots per call retried in ball arithmetic (tens of milliseconds each)
 BALL_PREC = 256  # bits
+_BALLS = threading.Lock()  # python-flint's working precision is global: one thread at a time sets it
 
 
 def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry):
     """The roots that double-precision interval arithmetic could not certify, tested again in complex ball
     arithmetic at ``BALL_PREC`` bits (:func:`cdpr_algebra.intervals.complex_krawczyk.certify_complex_root_balls`; only rows with
     ``retry``, at most ``BALL_RETRY_MAX`` of them, the others keep their reason)."""
-    from flint import arb, ctx
-
-    from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes, certify_complex_root_balls
+    from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes
 
     todo = [k for k in np.flatnonzero(~boxes.proven & retry) if np.all(np.isfinite(Z[k]))]
     proven, lo, hi = boxes.proven.copy(), boxes.lo.copy(), boxes.hi.copy()
@@ -498,9 +498,22 @@ def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry):
         reason[k] += " (not retried in ball arithmetic: its subproblem has failed paths)"
     if not todo:
         return ComplexRootBoxes(proven, lo, hi, real, nonreal, boxes.center, tuple(reason))
+    with _BALLS:
+        _ball_proofs(robot, rho, rows, Z, scale, todo[:BALL_RETRY_MAX], proven, lo, hi, real, nonreal, reason)
+    for k in todo[BALL_RETRY_MAX:]:
+        reason[k] += f" (not retried in ball arithmetic: more than {BALL_RETRY_MAX} such roots)"
+    return ComplexRootBoxes(proven, lo, hi, real, nonreal, boxes.center, tuple(reason))
+
+
+def _ball_proofs(robot, rho, rows, Z, scale, todo, proven, lo, hi, real, nonreal, reason):
+    """The ball-arithmetic Krawczyk test of the roots ``todo`` (see :func:`_retry_in_balls`; updates the arrays)."""
+    from flint import ctx
+
+    from cdpr_algebra.intervals.complex_krawczyk import certify_complex_root_balls
+
     with ctx.workprec(BALL_PREC):
         f = [arb(robot.load) * arb(float(c)) for c in robot.load_direction]
-    for k in todo[:BALL_RETRY_MAX]:
+    for k in todo:
         taut = [int(c) for c in rows[k]]
         A, b, g, _ = _robot_data(robot, taut, float)
         rho2 = [arb(float(rho[i])) * arb(float(rho[i])) for i in taut]  # exact at BALL_PREC bits
@@ -513,9 +526,6 @@ def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry):
             proven[k], lo[k], hi[k], real[k], nonreal[k], reason[k] = True, lk, hk, rk, nk, ""
         else:
             reason[k] = why
-    for k in todo[BALL_RETRY_MAX:]:
-        reason[k] += f" (not retried in ball arithmetic: more than {BALL_RETRY_MAX} such roots)"
-    return ComplexRootBoxes(proven, lo, hi, real, nonreal, boxes.center, tuple(reason))
 
 
 # --------------------------------------------------------------------------------------------- IGP

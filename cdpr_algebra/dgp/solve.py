@@ -688,6 +688,8 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
             _generic(m)
             fast_family(m)
         light = [c for c in sets if c not in heavy]
+        left = {m: sum(1 for c in heavy if len(c) == m) for m in {len(c) for c in heavy}}
+        certified = {}  # m -> future of the endpoint certificates of its taut sets
         # threads: the compiled tracker releases the GIL, so subproblems track in parallel without the cost of
         # worker processes (start-up, pickling); the Python parts (endgame, filtering, certificates) interleave
         with ThreadPoolExecutor(max_workers=min(jobs, len(heavy))) as ex:
@@ -699,17 +701,28 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
                 if progress:
                     progress(results[c][0], done, len(sets))
             for f in as_completed(futs):
-                results[futs[f]] = f.result()
+                c = futs[f]
+                results[c] = f.result()
                 done += 1
                 if progress:
-                    progress(results[futs[f]][0], done, len(sets))
+                    progress(results[c][0], done, len(sets))
+                left[len(c)] -= 1
+                if not left[len(c)]:  # every set of this m tracked: certify them (one batch) while others track
+                    group = [c2 for c2 in sets if c2 in heavy and len(c2) == len(c)]
+                    certified[len(c)] = (group, ex.submit(_with_endpoint_certificates, robot, rho,
+                                                          [(c2, *results[c2][::2]) for c2 in group]))
+            for group, fut in certified.values():
+                for c2, sub in zip(group, fut.result()):
+                    results[c2] = (sub, results[c2][1], None)
     else:
         for c in sets:
             results[c] = _solve_and_certify_solutions(robot, rho, c, seed, certify, options, exclude)
             done += 1
             if progress:
                 progress(results[c][0], done, len(sets))
-    # the regular endpoints of every subproblem certified at once, one vectorized run per m
+    # the regular endpoints of the subproblems not certified yet (all of them when serial): one batch per m (the
+    # interval arithmetic's cost is per vectorized round more than per root; on 2 cores the batches of the threads
+    # above run while other taut sets are still tracked)
     subs = tuple(_with_endpoint_certificates(robot, rho, [(c, *results[c][::2]) for c in sets]))
     sols = collected_solutions([s for c in sets for s in results[c][1]], robot.size)
     return DGPResult(sols, subs, time.perf_counter() - t0, seed, options)
