@@ -100,3 +100,33 @@ def test_structured_solve_equals_dense(m):
     J[7] = J[6]
     d = solve_with(taut_factor, taut_apply, J, b)
     assert d is None or not np.all(np.isfinite(d)) or np.abs(J @ d - b).max() > 1e-6
+
+
+@pytest.mark.parametrize("m", [2, 4, 6])
+def test_chart_solve_equals_dense(m):
+    """The structured LU of the chart Jacobian (lam columns first, statics and chart rows on top) solves the
+    homogenized system's Jacobian like numpy, for several right-hand sides, also near infinity (y0 = 1e-6, where
+    the w block y0 I nearly vanishes)."""
+    from cdpr_algebra.dgp.kernels import chart_apply, chart_factor
+    from cdpr_algebra.dgp.solve import fast_family
+    from cdpr_algebra.homotopy.projective import HomogenizedQuadratic
+
+    fam = fast_family(m)
+    rng = np.random.default_rng(40 + m)
+    p = rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m)
+    Fh = HomogenizedQuadratic(fam, rng.normal(size=fam.n + 1) + 1j * rng.normal(size=fam.n + 1))
+    Y = rng.normal(size=(2, fam.n + 1)) + 1j * rng.normal(size=(2, fam.n + 1))
+    Y[1, 0] = 1e-6
+    _, Js = Fh.evaluate_and_jacobian(Y, p)
+    n = fam.n + 1
+    for J in Js:
+        J = np.ascontiguousarray(J)
+        A, piv, out = np.zeros((n, n), complex), np.zeros(n, np.int64), np.empty(n, complex)
+        assert chart_factor(J, A, piv)
+        for _ in range(3):
+            b = rng.normal(size=n) + 1j * rng.normal(size=n)
+            chart_apply(J, A, piv, b, out)
+            ref = np.linalg.solve(J, b)
+            assert np.abs(out - ref).max() <= 1e-14 * np.linalg.cond(J) * np.abs(ref).max()
+            assert np.abs(J @ out - b).max() <= 1e-12 * np.abs(J).max() * np.abs(out).max()
+    assert Fh.compiled_kernels()[2] is chart_factor

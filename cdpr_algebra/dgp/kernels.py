@@ -20,7 +20,8 @@ from numba import types as nbt
 from cdpr_algebra.generated.taut_equations import taut_equations, taut_parameter_jacobian
 from cdpr_algebra.homotopy.compiled import APPLY_SIG, FACTOR_SIG, lu_apply_sparse_lead, lu_factor_sparse_lead
 
-__all__ = ["taut_fj", "taut_fjt", "taut_fj_batch", "taut_jp_batch", "taut_factor", "taut_apply"]
+__all__ = ["taut_fj", "taut_fj_batch", "taut_fjt", "taut_jp_batch", "taut_factor", "taut_apply", "chart_factor",
+           "chart_apply"]
 
 _C1 = nbt.complex128[::1]
 _C2 = nbt.complex128[:, ::1]
@@ -120,3 +121,57 @@ def taut_apply(J, A, piv, b, out):
         for j in range(3, 9):
             acc -= J[3 + q, j] * out[j]
         out[9 + q] = acc
+
+
+@nb.njit(cache=True)
+def _reverse(x, a, b):
+    """x[a:b] reversed in place."""
+    i, j = a, b - 1
+    while i < j:
+        x[i], x[j] = x[j], x[i]
+        i += 1
+        j -= 1
+
+
+@nb.njit(cache=True)
+def _chart_row(r, m):
+    """The row of a chart Jacobian (the homogenized taut system, y0 first, then the chart row) that is row r of the
+    reordered system: the 6 statics rows, the chart row, then the others in order."""
+    if r < 6:
+        return 6 + m + r
+    if r == 6:
+        return 12 + m
+    return r - 7
+
+
+@nb.njit(FACTOR_SIG, cache=True, error_model="numpy")
+def chart_factor(J, A, piv):
+    """LU factors (in A, piv) of a Jacobian of the taut system homogenized on a chart (unknowns y0, p, u, v, w, lam;
+    rows F_h, then the chart row): lam enters only the 6 statics rows and the chart row, so with the lam columns
+    first and those 7 rows on top the first m eliminations touch 7 rows only
+    (:func:`.homotopy.compiled.lu_factor_sparse_lead`; partial pivoting, the factors of the full elimination of the
+    reordered matrix), the rest is dense.  The w block is y0 I here (zero at infinity), so the w elimination of
+    :func:`taut_factor` does not apply.  False when J is singular."""
+    n = J.shape[1]
+    m = n - 13
+    for r in range(n):
+        i = _chart_row(r, m)
+        for c in range(m):
+            A[r, c] = J[i, 13 + c]
+        for j in range(13):
+            A[r, m + j] = J[i, j]
+    return lu_factor_sparse_lead(A, piv, n, m, 7)
+
+
+@nb.njit(APPLY_SIG, cache=True, error_model="numpy")
+def chart_apply(J, A, piv, b, out):
+    """out = J^{-1} b from the factors of :func:`chart_factor`: the rows of b reordered into ``out``, solved there,
+    and its entries (lam first) rotated back into place by three reversals (no allocation)."""
+    n = b.shape[0]
+    m = n - 13
+    for r in range(n):
+        out[r] = b[_chart_row(r, m)]
+    lu_apply_sparse_lead(A, piv, out, n, m, 7)
+    _reverse(out, 0, m)
+    _reverse(out, m, n)
+    _reverse(out, 0, n)

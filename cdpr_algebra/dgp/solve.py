@@ -318,6 +318,13 @@ class FastTautSystem:
 
         return taut_fj, taut_fjt, taut_factor, taut_apply
 
+    def chart_kernels(self):
+        """LU factor and apply of the Jacobian of this system homogenized on a chart (the projective retries and
+        endgame; :func:`cdpr_algebra.dgp.kernels.chart_factor`)."""
+        from .kernels import chart_apply, chart_factor
+
+        return chart_factor, chart_apply
+
     def _eval(self, x, p, jac: bool, jacp: bool):
         """F, dF/dx (``jac``), dF/dp (``jacp``) at the rows of x: the generated evaluators of
         :mod:`cdpr_algebra.generated.taut_equations`, compiled and looped over the rows (:mod:`.kernels`)."""

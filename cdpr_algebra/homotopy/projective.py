@@ -50,16 +50,20 @@ class HomogenizedQuadratic:
         return f"{getattr(self.system, 'hash', id(self.system))}:quadratic-projective"
 
     def compiled_kernels(self):
-        """When the system has compiled kernels: (its fj, its fjt, dense LU factor and apply, True), the last
-        entry telling the compiled tracker to evaluate the homogenized system through them
-        (:func:`.compiled.homogenized_eval`, the chart appended to the parameters); else None."""
+        """When the system has compiled kernels: (its fj, its fjt, LU factor and apply, True), the last entry
+        telling the compiled tracker to evaluate the homogenized system through them
+        (:func:`.compiled.homogenized_eval`, the chart appended to the parameters); the LU pair is the system's
+        ``chart_kernels()`` when it offers them (a solve that uses the structure of its homogenized Jacobian on a
+        chart), else dense; None without compiled kernels."""
         get = getattr(self.system, "compiled_kernels", None)
         base = None if get is None else get()
         if base is None:
             return None
         from .compiled import dense_apply, dense_factor
 
-        return base[0], base[1], dense_factor, dense_apply, True
+        chart = getattr(self.system, "chart_kernels", None)
+        factor, apply = (dense_factor, dense_apply) if chart is None else chart()
+        return base[0], base[1], factor, apply, True
 
     @property
     def kernel_constants(self) -> np.ndarray:
