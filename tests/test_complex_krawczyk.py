@@ -133,3 +133,29 @@ def test_ill_conditioned_roots_need_balls():
     # a point that is no root within the width limit is refused in balls too
     bad = certify_complex_root_balls(lambda z, jac: f(z, None, jac), np.array([1 + 1e-3]), np.ones(1))
     assert not bad[0] and "moves the root" in bad[5]
+
+
+def test_dgp_roots_proven_in_balls_are_enclosed_to_double_precision():
+    """Seed 000 Test 2, taut set {2, 4, 5, 6}: the regular endpoints that double-precision intervals cannot certify
+    (condition ~1e10) are proven in 256-bit balls, each in a box one or two ulps wide: Newton's method converges at
+    256 bits because the constants (rho_i^2 among them) are exact there.  (With rho_i^2 rounded to 53 bits the
+    balls' F kept a radius of 1e-16, Newton ran to its step limit and the boxes came out up to 75 ulps wide.)"""
+    from cdpr_algebra.certificates import equilibria as EQ
+    from cdpr_algebra.dgp import solve as D
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot(ROOT / "examples" / "seed000_test2.toml")
+    rho = np.asarray(robot.lengths, float)
+    cables = (1, 3, 4, 5)
+    _, _, Z = D._solve_taut_set(robot, rho, cables)
+    ((double, _),) = EQ.certify_endpoints(robot, rho, [(cables, Z)], [False])
+    bad = np.flatnonzero(~double.proven)
+    assert len(bad) >= 10
+    boxes = type(double)(double.proven[bad], double.lo[bad], double.hi[bad], double.real[bad], double.nonreal[bad],
+                         double.center[bad], tuple(double.reason[k] for k in bad))
+    scale = np.broadcast_to(EQ._scales(robot, len(cables), range(12 + len(cables)), robot.size), (Z.shape[1],))
+    out = EQ._retry_in_balls(robot, rho, np.repeat(np.array(cables)[None], len(bad), axis=0), Z[bad], scale,
+                             boxes, np.ones(len(bad), bool))
+    assert out.proven.all()
+    size = np.maximum(np.abs(np.hstack([out.center.real, out.center.imag])), np.hstack([scale, scale]))
+    assert ((out.hi - out.lo) / size).max() <= 1e-15

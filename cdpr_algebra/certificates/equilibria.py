@@ -511,21 +511,21 @@ def _ball_proofs(robot, rho, rows, Z, scale, todo, proven, lo, hi, real, nonreal
 
     from cdpr_algebra.intervals.complex_krawczyk import certify_complex_root_balls
 
-    with ctx.workprec(BALL_PREC):
+    with ctx.workprec(BALL_PREC):  # the constants too: rho_i^2 of a double is exact at BALL_PREC bits, not at 53
         f = [arb(robot.load) * arb(float(c)) for c in robot.load_direction]
-    for k in todo:
-        taut = [int(c) for c in rows[k]]
-        A, b, g, _ = _robot_data(robot, taut, float)
-        rho2 = [arb(float(rho[i])) * arb(float(rho[i])) for i in taut]  # exact at BALL_PREC bits
+        for k in todo:
+            taut = [int(c) for c in rows[k]]
+            A, b, g, _ = _robot_data(robot, taut, float)
+            rho2 = [arb(float(rho[i])) * arb(float(rho[i])) for i in taut]
 
-        def system(x, jac, A=A, b=b, rho2=rho2):
-            return taut_system(x, A, b, g, f, rho2, jacobian=jac)
+            def system(x, jac, A=A, b=b, rho2=rho2):
+                return taut_system(x, A, b, g, f, rho2, jacobian=jac)
 
-        ok, lk, hk, rk, nk, why = certify_complex_root_balls(system, Z[k], scale, prec=BALL_PREC)
-        if ok:
-            proven[k], lo[k], hi[k], real[k], nonreal[k], reason[k] = True, lk, hk, rk, nk, ""
-        else:
-            reason[k] = why
+            ok, lk, hk, rk, nk, why = certify_complex_root_balls(system, Z[k], scale, prec=BALL_PREC)
+            if ok:
+                proven[k], lo[k], hi[k], real[k], nonreal[k], reason[k] = True, lk, hk, rk, nk, ""
+            else:
+                reason[k] = why
 
 
 # --------------------------------------------------------------------------------------------- IGP
