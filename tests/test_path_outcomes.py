@@ -99,6 +99,44 @@ def test_chart_path_failed_before_the_first_sample_is_not_tracked_again():
     assert list(steps) == [2] * 4
 
 
+def test_detour_around_a_near_pole_rescues_a_phase_one_failure():
+    """a(t) = t a1 + (1 - t) a0 with a0 = -a1 + 1e-13 passes 5e-14 from 0 at t = 1/2: the large root of
+    a x^2 + x - 1 (~ -1/a) passes 1e13 there and its two paths diverge in phase 1.  Tracked again on a half circle
+    about the failure (``detour_retry``) they reach t = te on solutions no other path holds, and end on the
+    closed-form roots at a0; without the detour they stay failed."""
+    from cdpr_algebra.homotopy.endgame import track_paths
+    from cdpr_algebra.homotopy.start_systems import parameter_homotopy
+
+    p0 = np.array([-P1[0] + 1e-13, 1.0])
+    (hom,) = parameter_homotopy(_family(), P1, p0, rng=np.random.default_rng(0))
+    plain = SolveOptions(retry_tight=False, retry_mpmath=False)
+    off = track_paths(hom, _start(P1), plain)
+    assert outcome_counts(off.paths)["failed"] == 2 and all(p.retried == "" for p in off.paths)
+    on = track_paths(hom, _start(P1), replace(plain, detour_retry=True))
+    assert outcome_counts(on.paths) == {"regular": 4, "singular": 0, "at_infinity": 0, "failed": 0}
+    assert sorted(p.retried for p in on.paths) == ["", "", "detour", "detour"]
+    a = p0[0]
+    roots = [(-1 + np.sqrt(1 + 4 * a)) / (2 * a), (-1 - np.sqrt(1 + 4 * a)) / (2 * a)]
+    want = sorted((x, y) for x in roots for y in (1.0, -1.0))
+    got = sorted((p.endpoint[0], p.endpoint[1]) for p in on.paths)
+    assert np.allclose(np.array(got, dtype=complex), np.array(want, dtype=complex), rtol=1e-10)
+
+
+def test_detour_is_refused_where_it_would_duplicate_a_path():
+    """The check behind the detour: a point reached at te that another path holds is not kept (given the start
+    points twice, the second copy's detoured paths land on the first copy's solutions and stay failed)."""
+    from cdpr_algebra.homotopy.endgame import track_paths
+    from cdpr_algebra.homotopy.start_systems import parameter_homotopy
+
+    p0 = np.array([-P1[0] + 1e-13, 1.0])
+    (hom,) = parameter_homotopy(_family(), P1, p0, rng=np.random.default_rng(0))
+    opts = SolveOptions(retry_tight=False, retry_mpmath=False, detour_retry=True, check_path_jumping=False)
+    twice = np.vstack([_start(P1), _start(P1)])
+    res = track_paths(hom, twice, opts)
+    assert sum(p.retried == "detour" for p in res.paths) == 2
+    assert outcome_counts(res.paths)["failed"] == 2
+
+
 @pytest.fixture(scope="module")
 def test1():
     from cdpr_algebra.model.robot import load_robot
@@ -141,3 +179,19 @@ def test_forced_failures_make_the_dgp_incomplete_and_the_cli_exit_3(test1, tmp_p
     out = json.loads(cap.out)
     assert out["complete"] is False and [1, 2, 3] in out["incomplete"]
     assert "incomplete" in cap.err and "[1, 2, 3]" in cap.err
+
+
+def test_detours_complete_a_marionet_subproblem():
+    """Seed 000 Test 3 (MARIONET-VR), taut set {2, 3, 6}: 4 of its 156 paths fail before the endgame zone; with the
+    detours (the DGP's default) every path ends regular and every endpoint is certified, so the subproblem is
+    complete; without them it is not."""
+    from cdpr_algebra.dgp.solve import default_options, solve_taut_set
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot(ROOT / "examples" / "seed000_test3.toml")
+    with_detours, _ = solve_taut_set(robot, robot.lengths, (1, 2, 5), certify=False)
+    assert default_options().detour_retry
+    assert with_detours.complete and with_detours.certified == with_detours.paths == 156
+    without, _ = solve_taut_set(robot, robot.lengths, (1, 2, 5), certify=False,
+                                options=replace(default_options(), detour_retry=False))
+    assert not without.complete and without.outcomes["failed"] > 0

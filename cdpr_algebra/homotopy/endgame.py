@@ -118,7 +118,14 @@ class SolveOptions:
     * ``retry_mpmath`` [True], ``mp_dps`` [30], ``max_mpmath_paths`` [16]: then retry them with the
       scalar mpmath tracker (at most that many paths, the rest are reported failed);
     * ``check_path_jumping`` [True]: re-track paths whose nonsingular endpoints coincide;
-    * ``duplicate_tol`` [1e-8]: relative distance under which two endpoints coincide.
+    * ``duplicate_tol`` [1e-8]: relative distance under which two endpoints coincide;
+    * ``detour_retry`` [False]: track a path that failed in phase 1 (at t_f in (te, 1)) again around t_f on a
+      half circle in the complex t-plane (radius min(``DETOUR_RADIUS``, 1 - t_f, t_f - te), above, then below),
+      and keep the point it reaches at t = te only when Newton converges there quadratically and it is distinct
+      from the points every other path reached (:func:`_detour_retry`).  Only for a call given every start
+      solution of a homotopy whose system at t = te is generic (a parameter homotopy from a generic instance):
+      it has exactly as many regular solutions as paths, so once every path holds a distinct regular one there,
+      they are all of them, whichever path holds which (a detour may swap two paths' solutions).
     """
 
     tracker: TrackerOptions = field(default_factory=TrackerOptions)
@@ -129,11 +136,13 @@ class SolveOptions:
     max_mpmath_paths: int = 16
     check_path_jumping: bool = True
     duplicate_tol: float = 1e-8
+    detour_retry: bool = False
 
     def to_dict(self):
         return {"tracker": self.tracker.to_dict(), "endgame": self.endgame.to_dict(), "retry_tight": self.retry_tight,
                 "retry_mpmath": self.retry_mpmath, "mp_dps": self.mp_dps, "max_mpmath_paths": self.max_mpmath_paths,
-                "check_path_jumping": self.check_path_jumping, "duplicate_tol": self.duplicate_tol}
+                "check_path_jumping": self.check_path_jumping, "duplicate_tol": self.duplicate_tol,
+                "detour_retry": self.detour_retry}
 
 
 # ---------------------------------------------------------------------------------------------
@@ -435,16 +444,21 @@ def _track_to_endgame(homotopy, X0, idx, opts: SolveOptions, te, tr: TrackerOpti
     last step length in t (absolute; NaN for retried paths)."""
     seg = track_segment(homotopy, X0[idx], 1.0, te, tr)
     x, status, steps = seg.x, seg.status.copy(), seg.steps.copy()
+    t_fail = seg.t.copy()
     h = seg.h * abs(1.0 - te)
     retried = np.full(len(idx), "", dtype=object)
     bad = np.flatnonzero(status != SUCCESS)
     if bad.size and opts.retry_tight:
         seg2 = track_segment(homotopy, X0[idx[bad]], 1.0, te, tr.tightened())
         x[bad], status[bad] = seg2.x, seg2.status
+        t_fail[bad] = seg2.t
         steps[bad] += seg2.steps
         retried[bad] = "tight"
         h[bad] = np.nan
         bad = bad[seg2.status != SUCCESS]
+    if bad.size and opts.detour_retry and len(idx) == len(X0):
+        _detour_retry(homotopy, X0[idx], x, status, steps, retried, h, t_fail, te, tr, opts)
+        bad = bad[status[bad] != SUCCESS]
     if bad.size and opts.retry_mpmath and hasattr(homotopy, "mp_evaluate_all"):
         for i in bad[: opts.max_mpmath_paths]:
             xm, st, ns = mp_track(homotopy, X0[idx[i]], 1.0, te, opts.mp_dps, tr)
@@ -454,6 +468,59 @@ def _track_to_endgame(homotopy, X0, idx, opts: SolveOptions, te, tr: TrackerOpti
                 x[i], status[i] = xm, SUCCESS
                 h[i] = np.nan
     return x, status, steps, retried, h
+
+
+DETOUR_RADIUS = 0.05  # largest radius (in t) of the half circle of :func:`_detour_retry`
+DETOUR_CHORDS = 6  # chords of that half circle
+
+
+def _detour_retry(homotopy, X0, x, status, steps, retried, h, t_fail, te, tr: TrackerOptions, opts: SolveOptions):
+    """Paths that failed in phase 1 at t_f in (te, 1) (``t_fail``), tracked again from X0 with the same step
+    control along 1 -> t_f + d, a half circle about t_f of radius d = min(``DETOUR_RADIUS``, 1 - t_f, t_f - te)
+    (``DETOUR_CHORDS`` chords, above the real axis, then below for those that do not succeed above), and
+    t_f - d -> te.  A point reached at te is kept (``retried = "detour"``, the arrays updated in place) only when
+    Newton's method converges there quadratically with a moderate condition number and it is distinct (each
+    coordinate at its own scale, ``endgame.cluster_tol``) from every other path's point at te and from the
+    points kept before it: the system at te is generic (see ``SolveOptions.detour_retry``), so a kept point is a
+    solution no other path holds.  A path whose near-miss of a singular point lies inside the circle may come back
+    on another path's solution: it is refused, and stays failed."""
+    eo = opts.endgame
+    bad = [i for i in np.flatnonzero(status != SUCCESS) if te < t_fail[i].real < 1.0]
+    for side in (1.0, -1.0):
+        todo = np.array([i for i in bad if status[i] != SUCCESS], dtype=int)
+        if not todo.size:
+            return
+        tf = t_fail[todo].real
+        d = np.minimum(np.minimum(DETOUR_RADIUS, 1.0 - tf), tf - te)
+        todo, tf, d = todo[d > 1e-3], tf[d > 1e-3], d[d > 1e-3]
+        if not todo.size:
+            return
+        knots = [np.ones(len(todo), dtype=complex)]
+        knots += [tf + d * np.exp(1j * side * np.pi * k / DETOUR_CHORDS) for k in range(DETOUR_CHORDS + 1)]
+        knots.append(np.full(len(todo), te, dtype=complex))
+        xc = X0[todo].copy()
+        live = np.ones(len(todo), dtype=bool)
+        for ta, tb in zip(knots[:-1], knots[1:]):
+            a = np.flatnonzero(live & (ta != tb))
+            if not a.size:
+                continue
+            seg = track_segment(homotopy, xc[a], ta[a], tb[a], tr)
+            xc[a] = seg.x
+            steps[todo[a]] += seg.steps
+            live[a] &= seg.status == SUCCESS
+        a = np.flatnonzero(live)
+        if not a.size:
+            continue
+        xr, upd, _, cond, quad = refine(homotopy, xc[a], te, tol=eo.refine_tol)
+        for j, k in enumerate(a):
+            if not (quad[j] and cond[j] <= eo.singular_condition):
+                continue
+            others = x[status == SUCCESS]
+            scale = 1 + np.maximum(np.abs(others), np.abs(xr[j]))
+            if len(others) and np.any(np.all(np.abs(others - xr[j]) <= eo.cluster_tol * scale, axis=1)):
+                continue  # another path's solution: not this path's
+            i = todo[k]
+            x[i], status[i], retried[i], h[i] = xr[j], SUCCESS, "detour", np.nan
 
 
 def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):

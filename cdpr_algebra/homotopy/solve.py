@@ -177,7 +177,11 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
     homs = parameter_homotopy(system, start_parameters, target_parameters, rng=rng, detour=detour, gamma=gamma)
     asked = options
     options = replace(options, retry_mpmath=False)  # double-precision retries first, arbitrary precision last
-    paths = _track_segments(system, homs, X, options, seed)
+    # the detour retry needs every start solution of one homotopy (see SolveOptions.detour_retry): the first run of
+    # a one-segment route only, never the re-tracks of some paths below
+    first = options if len(homs) == 1 else replace(options, detour_retry=False)
+    options = replace(options, detour_retry=False)
+    paths = _track_segments(system, homs, X, first, seed)
     proj = chart = None  # built on the first retry (a system may be slow to homogenize)
     for round_ in range(retries):
         redo = _suspects(paths, options.duplicate_tol,
