@@ -3,7 +3,9 @@
 Pipeline (:func:`run_pipeline`, used by :func:`track_paths`), all vectorized across paths:
 
 1. track t = 1 -> ``endgame_start`` (0.1). Paths that fail are retried with tighter double-precision
-   settings, then by a scalar mpmath tracker (``mp_dps`` digits) before being reported failed.
+   settings, then (``detour_retry``) around the point where they failed on a half circle in the complex t-plane,
+   kept only on a regular solution at t = te that no other path holds (:func:`_detour_retry`), then by a scalar
+   mpmath tracker (``mp_dps`` digits) before being reported failed.
 2. fast finish: track t = 0.1 -> 0 and refine by Newton on H(x, 0); an endpoint is ``success`` when
    Newton converges quadratically to full double precision (last update <= ``refine_tol`` (1 + |x|))
    and cond(dF/dx) <= ``singular_condition``.
