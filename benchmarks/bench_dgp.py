@@ -35,6 +35,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "benchmarks"), str(ROOT)]
 
 from cdpr_algebra.dgp.solve import available_m, dgp  # noqa: E402
+from cdpr_algebra.homotopy.endgame import EndgameOptions  # noqa: E402
 from cdpr_algebra.model.robot import load_robot  # noqa: E402
 from timing import machine  # noqa: E402
 
@@ -105,13 +106,19 @@ def phc_compare(path, cable_sets, repeat, timeout):
 PHASES = (("phase 1, t = 1 -> 0.1", "phase1"), ("re-tracks in the chart, t = 1 -> 0.1", "phase1_chart"),
           ("finish t = 0.1 -> 0", "to0"), ("finish in the chart", "to0_chart"),
           ("endgame samples", "samples"), ("endgame samples in the chart", "samples_chart"),
-          ("Cauchy loops", "loops"), ("Cauchy loops in the chart", "loops_chart"))
+          ("Cauchy loops", "loops"), ("Cauchy loops in the chart", "loops_chart"),
+          ("detours around phase-1 failures", "detour"), ("detours in the chart", "detour_chart"))
+
+
+TE = EndgameOptions().endgame_start
 
 
 class _PhaseCounter:
     """Seconds, steps and calls of the compiled tracker per phase of the pipeline, told apart by the segment's ends
-    (t_a = 1: phase 1; t_b = 0: the finish; |t_a| = |t_b|: a Cauchy loop chord; else an endgame sample) and by
-    whether the homotopy is in a projective chart: wraps ``compiled.track_segment_compiled`` while in use."""
+    (t_a = 1: phase 1, the first leg of a detour included; t_b = 0: the finish; |t_a| = |t_b|: a Cauchy loop chord;
+    other complex ends, or a real segment that ends at the endgame start: a detour of the homotopy's detour retry;
+    else an endgame sample) and by whether the homotopy is in a projective chart: wraps
+    ``compiled.track_segment_compiled`` while in use."""
 
     def __enter__(self):
         import numpy as np
@@ -126,7 +133,8 @@ class _PhaseCounter:
             r = self._orig(hom, x0, t_a, t_b, o, h0)
             ta, tb = complex(np.atleast_1d(t_a)[0]), complex(np.atleast_1d(t_b)[0])
             kind = ("phase1" if abs(ta - 1) < 1e-12 else "to0" if tb == 0
-                    else "loops" if abs(abs(ta) - abs(tb)) < 1e-12 else "samples")
+                    else "loops" if abs(abs(ta) - abs(tb)) < 1e-12
+                    else "detour" if ta.imag or tb.imag or (tb == TE and ta.real > TE) else "samples")
             if getattr(hom, "chart", None) is not None:
                 kind += "_chart"
             sec, steps, calls = self.acc.get(kind, (0.0, 0, 0))
