@@ -481,33 +481,48 @@ def _detour_retry(homotopy, X0, x, status, steps, retried, h, t_fail, te, tr: Tr
     control along 1 -> t_f + d, a half circle about t_f of radius d = min(r, 1 - t_f, t_f - te) (``DETOUR_CHORDS``
     chords), and t_f - d -> te: r = 0.05 above the real axis, then below, then r = 0.15 above and below for those
     still failed (``DETOUR_RADII``; the larger circle, tried on seed 000 Tests 2 and 3 and seed 002's 8-cable
-    robot, rescued 4, 5 and 23 more paths in the same time).  A point reached at te is kept (``retried = "detour"``, the arrays updated in place) only when
-    Newton's method converges there quadratically with a moderate condition number and it is distinct (each
-    coordinate at its own scale, ``endgame.cluster_tol``) from every other path's point at te and from the
-    points kept before it: the system at te is generic (see ``SolveOptions.detour_retry``), so a kept point is a
-    solution no other path holds.  A path whose near-miss of a singular point lies inside the circle may come back
-    on another path's solution: it is refused, and stays failed."""
+    robot, rescued 4, 5 and 23 more paths in the same time).  The approach along the real axis is tracked once, to
+    t_f + 0.15 and on to t_f + 0.05, for every circle.  A point reached at te is kept (``retried = "detour"``, the
+    arrays updated in place) only when Newton's method converges there quadratically with a moderate condition
+    number and it is distinct (each coordinate at its own scale, ``endgame.cluster_tol``) from every other path's
+    point at te and from the points kept before it: the system at te is generic (see ``SolveOptions.detour_retry``),
+    so a kept point is a solution no other path holds.  A circle that encloses a branch point of the path brings it
+    back on another path's solution: that point is refused, and the next circle is tried; a path that no circle
+    brings to a point of its own stays failed."""
     eo = opts.endgame
-    bad = [i for i in np.flatnonzero(status != SUCCESS) if te < t_fail[i].real < 1.0]
-    for radius, side in [(r, s) for r in DETOUR_RADII for s in (1.0, -1.0)]:
-        todo = np.array([i for i in bad if status[i] != SUCCESS], dtype=int)
-        if not todo.size:
-            return
-        tf = t_fail[todo].real
+    bad = np.array([i for i in np.flatnonzero(status != SUCCESS) if te < t_fail[i].real < 1.0], dtype=int)
+    if not bad.size:
+        return
+    tf = t_fail[bad].real
+    # the approach along the real axis, tracked once: 1 -> t_f + d for the largest radius, then on to the smaller
+    starts = {}
+    xa, ta, ok = X0[bad].copy(), np.ones(len(bad), dtype=complex), np.ones(len(bad), dtype=bool)
+    for radius in sorted(DETOUR_RADII, reverse=True):
         d = np.minimum(np.minimum(radius, 1.0 - tf), tf - te)
-        todo, tf, d = todo[d > 1e-3], tf[d > 1e-3], d[d > 1e-3]
-        if not todo.size:
-            return
-        knots = [np.ones(len(todo), dtype=complex)]
-        knots += [tf + d * np.exp(1j * side * np.pi * k / DETOUR_CHORDS) for k in range(DETOUR_CHORDS + 1)]
+        tb = (tf + d).astype(complex)
+        a = np.flatnonzero(ok & (ta != tb))
+        if a.size:
+            seg = track_segment(homotopy, xa[a], ta[a], tb[a], tr)
+            xa[a] = seg.x
+            steps[bad[a]] += seg.steps
+            ok[a] &= seg.status == SUCCESS
+            ta[a] = tb[a]
+        starts[radius] = (xa.copy(), d, ok & (d > 1e-3))
+    for radius, side in [(r, s) for r in DETOUR_RADII for s in (1.0, -1.0)]:
+        xs, d, ok_r = starts[radius]
+        sel = np.flatnonzero(ok_r & (status[bad] != SUCCESS))
+        if not sel.size:
+            continue
+        todo, tfs, ds = bad[sel], tf[sel], d[sel]
+        knots = [tfs + ds * np.exp(1j * side * np.pi * k / DETOUR_CHORDS) for k in range(DETOUR_CHORDS + 1)]
         knots.append(np.full(len(todo), te, dtype=complex))
-        xc = X0[todo].copy()
+        xc = xs[sel].copy()
         live = np.ones(len(todo), dtype=bool)
-        for ta, tb in zip(knots[:-1], knots[1:]):
-            a = np.flatnonzero(live & (ta != tb))
+        for t0, t1 in zip(knots[:-1], knots[1:]):
+            a = np.flatnonzero(live & (t0 != t1))
             if not a.size:
                 continue
-            seg = track_segment(homotopy, xc[a], ta[a], tb[a], tr)
+            seg = track_segment(homotopy, xc[a], t0[a], t1[a], tr)
             xc[a] = seg.x
             steps[todo[a]] += seg.steps
             live[a] &= seg.status == SUCCESS
