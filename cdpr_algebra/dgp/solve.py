@@ -24,7 +24,8 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   regular solution that no other path holds (``SolveOptions.detour_retry``: the system at t = 0.1 is generic, so
   its solutions are exactly as many as the paths; on seed 000 Test 3 this left 47 failed paths instead of 86 and
   11 subproblems incomplete instead of 23, in less time, since fewer subproblems are re-run).  Any suspect path
-  (failed, or ending on another path's endpoint) is then re-tracked by the engine in projective coordinates along the same parameter path with steps tightened 10x (one round,
+  (failed, or ending on another path's endpoint) is then re-tracked by the engine in projective coordinates along
+  the same parameter path with steps tightened 10x (one round,
   ``PROJECTIVE_RETRIES``: a second round tightened 100x rescued none of 181 paths on seed 000 Test 3 and none of
   639 on Test 2; the paths still failed there lose accuracy to conditioning, 1e10..1e11 near large non-real
   solutions or singular sets at infinity, which smaller steps do not restore).  If one or two failed
@@ -712,7 +713,8 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
             _generic(m)
             fast_family(m)
         light = [c for c in sets if c not in heavy]
-        left = {m: sum(1 for c in heavy if len(c) == m) for m in {len(c) for c in heavy}}
+        by_m = {m: [c for c in sets if c in heavy and len(c) == m] for m in {len(c) for c in heavy}}
+        left = {m: len(group) for m, group in by_m.items()}
         certified = {}  # m -> future of the endpoint certificates of its taut sets
         # threads: the compiled tracker releases the GIL, so subproblems track in parallel without the cost of
         # worker processes (start-up, pickling); the Python parts (endgame, filtering, certificates) interleave
@@ -732,11 +734,10 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
                     progress(results[c][0], done, len(sets))
                 left[len(c)] -= 1
                 if not left[len(c)]:  # every set of this m tracked: certify them (one batch) while others track
-                    group = [c2 for c2 in sets if c2 in heavy and len(c2) == len(c)]
-                    certified[len(c)] = (group, ex.submit(_one_batch_at_a_time, robot, rho,
-                                                          [(c2, *results[c2][::2]) for c2 in group]))
-            for group, fut in certified.values():
-                for c2, sub in zip(group, fut.result()):
+                    certified[len(c)] = ex.submit(_one_batch_at_a_time, robot, rho,
+                                                  [(c2, *results[c2][::2]) for c2 in by_m[len(c)]])
+            for m, fut in certified.items():
+                for c2, sub in zip(by_m[m], fut.result()):
                     results[c2] = (sub, results[c2][1], None)
     else:
         for c in sets:

@@ -529,13 +529,11 @@ def _detour_retry(homotopy, X0, x, status, steps, retried, h, t_fail, te, tr: Tr
         a = np.flatnonzero(live)
         if not a.size:
             continue
-        xr, upd, _, cond, quad = refine(homotopy, xc[a], te, tol=eo.refine_tol)
+        xr, _, _, cond, quad = refine(homotopy, xc[a], te, tol=eo.refine_tol)
         for j, k in enumerate(a):
             if not (quad[j] and cond[j] <= eo.singular_condition):
                 continue
-            others = x[status == SUCCESS]
-            scale = 1 + np.maximum(np.abs(others), np.abs(xr[j]))
-            if len(others) and np.any(np.all(np.abs(others - xr[j]) <= eo.cluster_tol * scale, axis=1)):
+            if coincides_with_any(x[status == SUCCESS], xr[j], eo.cluster_tol):
                 continue  # another path's solution: not this path's
             i = todo[k]
             x[i], status[i], retried[i], h[i] = xr[j], SUCCESS, "detour", np.nan
@@ -697,6 +695,16 @@ def _run(homotopy, X0, idx, opts: SolveOptions, tr: TrackerOptions):
         x[ok], status[ok], wind[ok], acc[ok], tfin[ok], order[ok] = xo, so, wo, ao, to, oo
         steps[ok] += sto
     return _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order)
+
+
+def coincides_with_any(points, x, tol: float) -> bool:
+    """x agrees with some row of ``points`` in every coordinate to tol (1 + the larger modulus of that coordinate):
+    the test of :func:`duplicate_groups`, for one point against many."""
+    points = np.asarray(points)
+    if not len(points):
+        return False
+    scale = 1 + np.maximum(np.abs(points), np.abs(x))
+    return bool(np.any(np.all(np.abs(points - x) <= tol * scale, axis=1)))
 
 
 def duplicate_groups(points: np.ndarray, tol: float) -> list:

@@ -19,7 +19,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .endgame import SolveOptions, duplicate_groups, mp_path, mp_track, refine
+from .endgame import SolveOptions, coincides_with_any, duplicate_groups, mp_path, mp_track, refine
 from .projective import from_chart, to_chart
 from .results import (ENDGAME_FAILED, FAILURES, PATH_JUMPING, SINGULAR, STEP_TOO_SMALL, SUCCESS, Solution,
                       SolveResult, TrackResult)
@@ -206,9 +206,7 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
             q = type(q)(**{**q.__dict__, "endpoint": x[0]})
             candidate = type(q)(**{**q.__dict__, "index": i, "status": status, "retried": "projective"})
             others = np.array([paths[j].endpoint for j in range(len(paths)) if j != i and paths[j].status == SUCCESS])
-            distinct = not len(others) or not np.any(np.all(  # each coordinate at its own scale
-                np.abs(others - candidate.endpoint)
-                <= options.duplicate_tol * (1 + np.maximum(np.abs(others), np.abs(candidate.endpoint))), axis=1))
+            distinct = not coincides_with_any(others, candidate.endpoint, options.duplicate_tol)
             if (status == SUCCESS and distinct) or (paths[i].status in FAILURES and status not in FAILURES):
                 paths[i] = candidate
     if asked.retry_mpmath and hasattr(homs[0], "mp_evaluate_all"):
