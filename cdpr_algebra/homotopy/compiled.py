@@ -371,12 +371,14 @@ def track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xo
             finite = np.isfinite(e1) and np.isfinite(e2)
             contracting = (e2 <= mc * e1) or (e1 <= 1e-9 and e2 <= 1e-10)
             ok = finite and e1 <= ptol and contracting and e2 <= ctol
-            if finite and not ok and e1 <= ptol and e2 <= noise_tol:
-                # round-off floor: a third update that does not move away either
+            if finite and not ok and e1 <= ptol and (contracting or e2 <= noise_tol):
+                # a third (chord) update: Newton still contracting towards corrector_tol, or the round-off
+                # floor (an update that does not move away either)
                 _newton_rhs(fj, fjt, hom, x2, p, F, Js, rhs, ws)
                 _lin(okn, apply, Jn, An, pivn, rhs, d3)
                 e3 = _norm(d3) / scale
-                if np.isfinite(e3) and e3 <= 2.0 * e2 and e3 <= noise_tol:
+                if np.isfinite(e3) and ((contracting and e3 <= ctol and e3 <= mc * e2)
+                                        or (e2 <= noise_tol and e3 <= 2.0 * e2 and e3 <= noise_tol)):
                     ok = True
                     for c in range(n):
                         x2[c] += d3[c]
