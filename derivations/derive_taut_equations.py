@@ -37,6 +37,7 @@ from codegen import HEADER, _pow_to_mul, write  # noqa: E402
 from cdpr_algebra.model.taut_equations import taut_family  # noqa: E402
 
 TARGET = "cdpr_algebra/generated/taut_equations.py"
+INTERVAL_TARGET = "cdpr_algebra/generated/taut_equations_intervals.py"
 POSE = ["P0", "P1", "P2", "u0", "u1", "u2", "v0", "v1", "v2", "w0", "w1", "w2"]
 GLOBAL_PARAMS = ["g0", "g1", "g2", "f0", "f1", "f2"]
 CABLE_PARAMS = ["a0", "a1", "a2", "r2", "b0", "b1", "b2"]
@@ -224,7 +225,36 @@ def generate() -> dict[str, str]:
            "(see its docstring).  Plain arithmetic and indexing: compiled by numba, on numpy columns, on arb balls.\n"
            '"""\n')
     text = HEADER.format(script=Path(__file__).name) + doc + "\n".join(L + Fo + P) + "\n"
-    return {TARGET: text}
+    # the residual with the evaluator signature: F at a box's centre in the form (and roundings) of taut_residual
+    Fi = [Fo[0], Fo[1], "def taut_residual(x, p, dp, F, J, Ht, with_ht):"] + Fo[3:]
+    return {TARGET: text, INTERVAL_TARGET: _interval_text("\n".join(L + Fi) + "\n")}
+
+
+def _interval_text(source: str) -> str:
+    """taut_equations rewritten over complex intervals (:func:`cdpr_algebra.intervals.codegen.complex_interval_source`)
+    and compiled by numba with the evaluator signature of :func:`cdpr_algebra.intervals.complex_kernels.krawczyk_kernel`."""
+    from cdpr_algebra.intervals.codegen import complex_interval_source
+
+    from cdpr_algebra.intervals.complex_kernels import OPERATIONS
+
+    body = complex_interval_source(source)
+    used = [op for op in OPERATIONS if f"{op}(" in body]
+    doc = ('"""The DGP equations per taut set over rectangular complex intervals: ``taut_equations`` and\n'
+           "``taut_residual`` (here with the signature of the former) of :mod:`cdpr_algebra.generated.taut_equations`\n"
+           "rewritten by\n"
+           ":func:`cdpr_algebra.intervals.codegen.complex_interval_source` (values are (re lo, re hi, im lo, im hi);\n"
+           "x (12 + m, 4), p (7 m + 6, 4), F (12 + m, 4), J (12 + m, 12 + m, 4); outward-rounded operations of\n"
+           ":mod:`cdpr_algebra.intervals.complex_kernels`), compiled by numba for the compiled Krawczyk test of\n"
+           ":mod:`cdpr_algebra.certificates.equilibria`.\n"
+           '"""\n\n'
+           "import numba as nb\n\n"
+           "from cdpr_algebra.intervals.complex_kernels import EVALUATOR_SIG\n"
+           f"from cdpr_algebra.intervals.complex_kernels import {', '.join(sorted(used))}  # noqa: F401\n"
+           "\n\n")
+    for name in ("taut_equations", "taut_residual"):
+        body = body.replace(f"def {name}(", '@nb.njit(EVALUATOR_SIG, cache=True, error_model="numpy", nogil=True)\n'
+                            f"def {name}(", 1)
+    return HEADER.format(script=Path(__file__).name) + doc + body
 
 
 if __name__ == "__main__":

@@ -464,7 +464,8 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
     approximate = system(f_float, lambda v: v ** 2)
 
     scale = _scales(robot, m, range(12 + m), robot.size)
-    boxes = certify_complex_roots(rigorous, approximate, Z, scale)
+    boxes = certify_complex_roots(rigorous, approximate, Z, scale,
+                                  kernel=_compiled_krawczyk(robot, rho, rows, f_iv, Interval))
     balls = [True] * len(groups) if balls is None else list(balls)
     retry = np.concatenate([np.full(len(Zg), bool(f)) for (_, Zg), f in zip(groups, balls)]).astype(bool)
     boxes = _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry)
@@ -478,6 +479,38 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
         over[bg.proven] = overlapping(bg.lo[bg.proven], bg.hi[bg.proven])
         out.append((bg, over))
     return out
+
+
+def _compiled_krawczyk(robot, rho, rows, f_iv, Interval):
+    """The Krawczyk operator of the taut systems of the roots (``rows``: their taut sets, N x m) over boxes, compiled
+    (:func:`cdpr_algebra.intervals.complex_kernels.krawczyk_kernel` on the generated interval evaluator
+    :mod:`cdpr_algebra.generated.taut_equations_intervals`), with the constants of :func:`certify_endpoints`: the
+    robot's floats exactly, rho_i^2 and Q d enclosed.  Same operator as the interval objects, without the GIL."""
+    from cdpr_algebra.generated.taut_equations_intervals import taut_equations as ev, taut_residual as res
+    from cdpr_algebra.intervals.complex_kernels import krawczyk_kernel
+
+    N, m = rows.shape
+    P = np.zeros((N, 7 * m + 6, 4))
+    for i in range(m):
+        cab = rows[:, i]
+        for k in range(3):
+            P[:, 3 * i + k, 0] = P[:, 3 * i + k, 1] = robot.base[cab, k]
+            P[:, 4 * m + 3 * i + k, 0] = P[:, 4 * m + 3 * i + k, 1] = robot.platform[cab, k]
+        r2 = Interval.point(rho[cab]).sqr()
+        P[:, 3 * m + i, 0], P[:, 3 * m + i, 1] = r2.lo, r2.hi
+    for k in range(3):
+        P[:, 7 * m + k, 0] = P[:, 7 * m + k, 1] = float(robot.com[k])
+        P[:, 7 * m + 3 + k, 0], P[:, 7 * m + 3 + k, 1] = float(np.min(f_iv[k].lo)), float(np.max(f_iv[k].hi))
+
+    def kernel(part, y, r):
+        y = np.ascontiguousarray(y, dtype=float)
+        K_lo, K_hi = np.empty_like(y), np.empty_like(y)
+        ok = np.zeros(len(y), dtype=bool)
+        krawczyk_kernel(ev, res, y, np.ascontiguousarray(r, dtype=float), np.ascontiguousarray(P[part]), K_lo, K_hi,
+                        ok)
+        return Interval(K_lo, K_hi), ok
+
+    return kernel
 
 
 BALL_RETRY_MAX = 400  # roots per call retried in ball arithmetic (tens of milliseconds each)

@@ -171,13 +171,16 @@ class ComplexRootBoxes:
         return int(np.sum(self.proven))
 
 
-def _krawczyk_round(system, n, part, Y, r, rmax, lo, hi, proven, reason, max_rel_width):
+def _krawczyk_round(system, n, part, Y, r, rmax, lo, hi, proven, reason, max_rel_width, kernel=None):
     """One epsilon-inflation round of :func:`certify_complex_roots` on the roots ``part`` (updates r, lo, hi,
     proven, reason in place); returns those still pending."""
     y, rr = Y[part], r[part]
     X = Interval(y - rr, y + rr)
-    _, J = system(_complex_box(X, n), part, True)
-    K, ok = krawczyk(_real_residual(system, n, part), X, y, JX=realified_jacobian(J, len(part), n))
+    if kernel is not None:
+        K, ok = kernel(part, y, rr)
+    else:
+        _, J = system(_complex_box(X, n), part, True)
+        K, ok = krawczyk(_real_residual(system, n, part), X, y, JX=realified_jacobian(J, len(part), n))
     inside = ok & np.all((K.lo > X.lo) & (K.hi < X.hi), axis=1)
     done = part[inside]
     proven[done] = True
@@ -198,7 +201,7 @@ def _krawczyk_round(system, n, part, Y, r, rmax, lo, hi, proven, reason, max_rel
 
 
 def certify_complex_roots(system, system_float, Z, scale, real_rtol: float = 1e-8,
-                          max_rel_width: float = 1e-6, max_iter: int = 12) -> ComplexRootBoxes:
+                          max_rel_width: float = 1e-6, max_iter: int = 12, kernel=None) -> ComplexRootBoxes:
     """Prove that each approximate root z of ``Z`` (N, n complex) has exactly one root of F within a box of
     width <= ``max_rel_width`` * max(scale, |z_k|) in each coordinate (real and imaginary part).
 
@@ -211,6 +214,9 @@ def certify_complex_roots(system, system_float, Z, scale, real_rtol: float = 1e-
     C^n.  Steps: two complex Newton steps; epsilon-inflation X = y +/- r from r = ``START_RTOL`` scale, r from
     |K(X) - y|, until K(X) lies in the interior of X (proven) or r passes the width limit (not proven).  A root
     that Newton's method moves by more than the width limit is not proven (the proof would be about another point).
+    ``kernel(rows, y, r) -> (K Interval (len(rows), 2n), ok (len(rows),))``: the Krawczyk operator of the same
+    system over the boxes y -+ r computed otherwise (compiled: :func:`.complex_kernels.krawczyk_kernel`); then
+    ``system`` is not evaluated in interval arithmetic.
     """
     Z = np.asarray(Z, dtype=complex)
     N, n = Z.shape
@@ -247,7 +253,8 @@ def certify_complex_roots(system, system_float, Z, scale, real_rtol: float = 1e-
         kept = []
         for c0 in range(0, len(pending), KRAWCZYK_CHUNK):
             part = pending[c0:c0 + KRAWCZYK_CHUNK]
-            kept.append(_krawczyk_round(system, n, part, Y, r, rmax, lo, hi, proven, reason, max_rel_width))
+            kept.append(_krawczyk_round(system, n, part, Y, r, rmax, lo, hi, proven, reason, max_rel_width,
+                                        kernel))
         pending = np.concatenate(kept)
     for k in pending:
         reason[k] = f"Krawczyk test not satisfied after {max_iter} inflations"
