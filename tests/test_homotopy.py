@@ -388,3 +388,30 @@ def test_many_target_solver_against_closed_form_roots():
         assert np.allclose(got, expect, atol=1e-9)
         if len(sols):
             assert np.allclose(sols[:, 1], pc * sols[:, 0] + pd, atol=1e-9)
+
+
+class _CubeRoot:
+    """H(x, t) = x^3 - (0.05 + t): the path x(t) = (0.05 + t)^(1/3) (numpy tracker; no compiled kernels)."""
+
+    n = neq = 1
+
+    def evaluate_all(self, x, t):
+        t = np.asarray(t, dtype=complex)
+        return x ** 3 - (0.05 + t)[:, None], 3 * x[:, :, None] ** 2, -np.ones_like(x)
+
+    def evaluate_and_jacobian(self, x, t):
+        return self.evaluate_all(x, t)[:2]
+
+
+def test_third_newton_update_accepts_a_step_two_updates_leave_above_the_corrector_tolerance():
+    """A predictor error up to predictor_tol (1e-2) is corrected in three Newton updates to corrector_tol (1e-10):
+    such steps are accepted, so the path takes few steps (6), against 16 when two updates must reach the
+    tolerance (the round-off acceptance is kept out of the way by noise_tol = 1e-12); the endpoint is
+    0.05^(1/3) to 1e-12."""
+    H = _CubeRoot()
+    x0 = np.array([[1.05 ** (1 / 3) + 0j]])
+    o = TrackerOptions(predictor_tol=1e-2, corrector_tol=1e-10, noise_tol=1e-12)
+    seg = track_segment(H, x0, 1.0, 0.0, o)
+    assert seg.status[0] == "success"
+    assert abs(seg.x[0, 0] - 0.05 ** (1 / 3)) <= 1e-12
+    assert seg.steps[0] <= 8
