@@ -36,8 +36,6 @@ import numpy as np
 
 import numba as nb
 from numba import types as nbt
-from numba.core.types.function_type import WrapperAddressProtocol
-from numba.experimental.function_type import _get_wrapper_address
 
 __all__ = ["available", "track_kernel", "track_segment_compiled", "lu_factor_sparse_lead", "lu_apply_sparse_lead",
            "dense_factor", "dense_apply", "solve_with", "homogenized_eval", "homogenized_workspace", "FACTOR_SIG",
@@ -65,34 +63,6 @@ FACTOR_SIG = nbt.boolean(_C2, _C2, _I1)
 APPLY_SIG = nbt.void(_C2, _C2, _I1, _C1, _C1)
 _FACTOR = nbt.FunctionType(FACTOR_SIG)
 _APPLY = nbt.FunctionType(APPLY_SIG)
-
-
-class _Address(WrapperAddressProtocol):
-    """A compiled function passed to the kernel by its cached wrapper address: numba resolves a dispatcher argument
-    of a first-class function type on every call (~50 us each, four per call of the kernel: 0.2 s of Test 3's
-    ~900 calls); this resolves it once."""
-
-    def __init__(self, fn, sig):
-        self.fn, self.sig = fn, sig
-        self.addr = _get_wrapper_address(fn, sig)
-
-    def __wrapper_address__(self):
-        return self.addr
-
-    def signature(self):
-        return self.sig
-
-
-_ADDRESSES: dict = {}
-
-
-def _addressed(fn, ftype):
-    """The :class:`_Address` of ``fn`` for the first-class function type ``ftype`` (cached per function)."""
-    key = (id(fn), ftype)
-    got = _ADDRESSES.get(key)
-    if got is None or got.fn is not fn:
-        got = _ADDRESSES[key] = _Address(fn, ftype.signature)
-    return got
 
 
 @nb.njit(cache=True, error_model="numpy")
@@ -478,7 +448,6 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
     steps = np.empty(N, dtype=np.int64)
     Hout = np.empty(N)
     if N:
-        track_kernel(_addressed(fj, _FJ), _addressed(fjt, _FJT), _addressed(factor, _FACTOR), _addressed(apply, _APPLY),
-                     hom, X, P1, P0, G, TA, TB, H0, opts, Xout, S, st, steps, Hout)
+        track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xout, S, st, steps, Hout)
     names = np.array([S_RUN, SUCCESS, S_SMALL, S_MANY, S_DIV], dtype=object)
     return SegmentResult(x=Xout, s=S, t=TA + S * (TB - TA), status=names[st], steps=steps, h=Hout)
