@@ -415,3 +415,33 @@ def test_third_newton_update_accepts_a_step_two_updates_leave_above_the_correcto
     assert seg.status[0] == "success"
     assert abs(seg.x[0, 0] - 0.05 ** (1 / 3)) <= 1e-12
     assert seg.steps[0] <= 8
+
+
+def test_duplicate_groups_match_the_pairwise_definition():
+    """duplicate_groups (sorted windows, vectorized in chunks) gives the groups linked by the pairwise test on every
+    pair (each coordinate within tol (1 + the larger modulus)), on clustered random points with huge coordinates,
+    non-finite rows and chunks smaller than the candidate count."""
+    from cdpr_algebra.homotopy import endgame as EG
+    from cdpr_algebra.homotopy.clusters import linked_groups
+
+    rng = np.random.default_rng(11)
+    for trial in range(30):
+        N, n = int(rng.integers(2, 60)), int(rng.integers(1, 4))
+        base = rng.normal(size=(N // 3 + 1, n)) + 1j * rng.normal(size=(N // 3 + 1, n))
+        P = base[rng.integers(0, len(base), N)] * 10.0 ** rng.integers(0, 9, (N, 1))
+        P = P + 1e-9 * rng.normal(size=P.shape) * (1 + np.abs(P)) * rng.integers(0, 2, (N, 1))
+        if trial % 5 == 0:
+            P[0, 0] = np.nan
+        tol = 1e-7
+        scale = 1 + np.maximum(np.abs(P)[:, None], np.abs(P)[None, :])
+        with np.errstate(invalid="ignore"):
+            close = np.all(np.abs(P[:, None] - P[None, :]) <= tol * scale, axis=2)
+        i, j = np.nonzero(np.triu(close, 1))
+        want = sorted(sorted(g) for g in linked_groups(N, i, j) if len(g) > 1)
+        for chunk in (3, 1 << 16):
+            old, EG.DUPLICATE_CHUNK = EG.DUPLICATE_CHUNK, chunk
+            try:
+                got = sorted(sorted(g) for g in EG.duplicate_groups(P, tol))
+            finally:
+                EG.DUPLICATE_CHUNK = old
+            assert got == want

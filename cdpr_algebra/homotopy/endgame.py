@@ -707,6 +707,9 @@ def coincides_with_any(points, x, tol: float) -> bool:
     return bool(np.any(np.all(np.abs(points - x) <= tol * scale, axis=1)))
 
 
+DUPLICATE_CHUNK = 1 << 16  # candidate pairs tested at once by duplicate_groups
+
+
 def duplicate_groups(points: np.ndarray, tol: float) -> list:
     """Groups (lists of row indices, size >= 2) of points that agree in every coordinate to tol (1 + |that
     coordinate|): each coordinate at its own scale, so that points with one huge coordinate and another that
@@ -716,17 +719,26 @@ def duplicate_groups(points: np.ndarray, tol: float) -> list:
 
     order = np.argsort(points[:, 0].real)
     key = points[order, 0].real
-    pairs = []
-    span = tol * (1 + np.max(np.abs(points)))
-    for a_ in range(len(order)):
-        b_ = a_ + 1
-        while b_ < len(order) and key[b_] - key[a_] <= span:
-            i, j = order[a_], order[b_]
-            scale = 1 + np.maximum(np.abs(points[i]), np.abs(points[j]))
-            if np.all(np.abs(points[i] - points[j]) <= tol * scale):
-                pairs.append((i, j))
-            b_ += 1
-    i, j = np.array(pairs, dtype=np.int64).reshape(-1, 2).T
+    span = tol * (1 + np.max(np.abs(points[np.isfinite(points)]), initial=0.0))
+    # candidate pairs (a, b), a < b in sorted order, whose first real parts are within span (a window per a), then
+    # the test of every coordinate, vectorized over chunks of candidates
+    N = len(order)
+    hi = np.searchsorted(key, key + span, side="right")
+    counts = np.maximum(hi - np.arange(N) - 1, 0)
+    pi, pj = [], []
+    start = 0
+    while start < N:  # chunks of about DUPLICATE_CHUNK candidate pairs: memory stays O(DUPLICATE_CHUNK n)
+        stop = min(N, start + 1 + int(np.searchsorted(np.cumsum(counts[start:]), DUPLICATE_CHUNK)))
+        c = counts[start:stop]
+        a = np.repeat(np.arange(start, stop), c)
+        b = a + 1 + (np.arange(len(a)) - np.repeat(np.cumsum(c) - c, c))
+        i, j = order[a], order[b]
+        scale = 1 + np.maximum(np.abs(points[i]), np.abs(points[j]))
+        same = np.all(np.abs(points[i] - points[j]) <= tol * scale, axis=1)
+        pi.append(i[same])
+        pj.append(j[same])
+        start = stop
+    i, j = np.concatenate(pi).astype(np.int64), np.concatenate(pj).astype(np.int64)
     return [g for g in linked_groups(len(points), i, j) if len(g) > 1]
 
 
