@@ -425,8 +425,9 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
     """Krawczyk boxes of complex DGP roots (issue 15, item 4), for several taut sets with the same m >= 2 at once.
 
     ``groups``: list of (0-based taut ``cables``, Z (N, 12 + m) complex roots of their taut system in world
-    coordinates (p, u, v, w, lam)); ``lengths``: all n (None: the robot's).  One vectorized certification over
-    every root of every group (each row with the constants of its own taut set).  Returns, per group,
+    coordinates (p, u, v, w, lam)); ``lengths``: all n (None: the robot's).  One certification over every root of
+    every group (each row with the constants of its own taut set), the Krawczyk rounds compiled
+    (:func:`_compiled_krawczyk`, without the GIL).  Returns, per group,
     (:class:`cdpr_algebra.intervals.complex_krawczyk.ComplexRootBoxes`, overlapping (N,) bool): each root proven unique in its box of
     C^(12+m) (real or non-real proven where decidable), and the proven boxes meeting another proven box of the
     same group (those roots are not proven distinct).  Constants: the robot's floats exactly, Q d and rho_i^2
@@ -465,7 +466,7 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
 
     scale = _scales(robot, m, range(12 + m), robot.size)
     boxes = certify_complex_roots(rigorous, approximate, Z, scale,
-                                  kernel=_compiled_krawczyk(robot, rho, rows, f_iv, Interval))
+                                  kernel=_compiled_krawczyk(robot, rho, rows, f_iv))
     balls = [True] * len(groups) if balls is None else list(balls)
     retry = np.concatenate([np.full(len(Zg), bool(f)) for (_, Zg), f in zip(groups, balls)]).astype(bool)
     boxes = _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry)
@@ -481,12 +482,13 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
     return out
 
 
-def _compiled_krawczyk(robot, rho, rows, f_iv, Interval):
+def _compiled_krawczyk(robot, rho, rows, f_iv):
     """The Krawczyk operator of the taut systems of the roots (``rows``: their taut sets, N x m) over boxes, compiled
     (:func:`cdpr_algebra.intervals.complex_kernels.krawczyk_kernel` on the generated interval evaluator
     :mod:`cdpr_algebra.generated.taut_equations_intervals`), with the constants of :func:`certify_endpoints`: the
     robot's floats exactly, rho_i^2 and Q d enclosed.  Same operator as the interval objects, without the GIL."""
     from cdpr_algebra.generated.taut_equations_intervals import taut_equations as ev, taut_residual as res
+    from cdpr_algebra.intervals.arithmetic import Interval
     from cdpr_algebra.intervals.complex_kernels import krawczyk_kernel
 
     N, m = rows.shape
