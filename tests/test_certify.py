@@ -350,3 +350,37 @@ def test_igp_position_table4_boundary():
     # complex solutions carry no certificate
     assert all(s.certificate is None and s.certified is None for s in res.solutions if not s.real)
     json.dumps(res.to_dict(include_complex=True))
+
+
+def test_root_certificate_is_not_changed_by_a_ball_retry_in_another_thread():
+    """python-flint's working precision is global to the process: while another thread holds it at 256 bits (as the
+    endpoints' ball retry does), a DGP root's certificate waits for it (certificates.equilibria.FLINT) and is
+    computed at 53 bits, equal to the one computed alone (at 256 bits its boxes came out tighter than the reported
+    double-precision tensions: seed 000 Tests 2 and 3 failed their consistency check once the threads interleaved)."""
+    import threading
+    import time
+
+    from flint import ctx
+
+    from cdpr_algebra.certificates import equilibria as EQ
+
+    robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
+    s = dgp(robot, jobs=1).solutions[0]
+    taut = [t - 1 for t in s.taut]
+    alone = certify_taut_root(robot, None, taut, s.position, s.rotation, s.tensions[taut])
+    held = threading.Event()
+
+    def hold():
+        with EQ.FLINT, ctx.workprec(256):
+            held.set()
+            time.sleep(0.3)
+
+    th = threading.Thread(target=hold)
+    th.start()
+    held.wait()
+    during = certify_taut_root(robot, None, taut, s.position, s.rotation, s.tensions[taut])
+    th.join()
+    assert ctx.prec == 53
+    np.testing.assert_array_equal(during.tension_lower, alone.tension_lower)
+    np.testing.assert_array_equal(during.tension_upper, alone.tension_upper)
+    assert during.box_width == alone.box_width

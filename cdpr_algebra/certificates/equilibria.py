@@ -335,7 +335,16 @@ def _krawczyk(make_system, x0, scale, box_rtol):
 
 def certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol: float = BOX_RTOL) -> Certificate:
     """Certificate of one DGP root with the 0-based taut ``cables`` (m = 1..6), cable ``lengths`` (all n, None:
-    the robot's), pose (``position`` of the platform-frame origin, ``rotation``) and the m taut ``tensions``."""
+    the robot's), pose (``position`` of the platform-frame origin, ``rotation``) and the m taut ``tensions``.
+    Computed at python-flint's default 53 bits, holding :data:`FLINT` (the working precision is global to the
+    process: a 256-bit ball retry in another thread would otherwise change this certificate's boxes)."""
+    from flint import ctx
+
+    with FLINT, ctx.workprec(53):
+        return _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol)
+
+
+def _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol):
     rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
     taut = [int(c) for c in cables]
     m = len(taut)
@@ -517,7 +526,7 @@ def _compiled_krawczyk(robot, rho, rows, f_iv):
 
 BALL_RETRY_MAX = 400  # roots per call retried in ball arithmetic (tens of milliseconds each)
 BALL_PREC = 256  # bits
-_BALLS = threading.Lock()  # python-flint's working precision is global: one thread at a time sets it
+FLINT = threading.RLock()  # python-flint's working precision is global to the process: one thread at a time uses it
 
 
 def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry):
@@ -533,7 +542,7 @@ def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry):
         reason[k] += " (not retried in ball arithmetic: its subproblem has failed paths)"
     if not todo:
         return ComplexRootBoxes(proven, lo, hi, real, nonreal, boxes.center, tuple(reason))
-    with _BALLS:
+    with FLINT:
         _ball_proofs(robot, rho, rows, Z, scale, todo[:BALL_RETRY_MAX], proven, lo, hi, real, nonreal, reason)
     for k in todo[BALL_RETRY_MAX:]:
         reason[k] += f" (not retried in ball arithmetic: more than {BALL_RETRY_MAX} such roots)"
