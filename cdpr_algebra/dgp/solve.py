@@ -739,9 +739,8 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
             done += 1
             if progress:
                 progress(results[c][0], done, len(sets))
-    # the regular endpoints of the subproblems not certified yet (all of them when serial): one batch per m (the
-    # interval arithmetic's cost is per vectorized round more than per root; on 2 cores the batches of the threads
-    # above run while other taut sets are still tracked)
+    # the regular endpoints of the subproblems not certified yet (all of them when serial; the threads above certify
+    # their own sets): one batch per m
     subs = tuple(_with_endpoint_certificates(robot, rho, [(c, *results[c][::2]) for c in sets]))
     sols = collected_solutions([s for c in sets for s in results[c][1]], robot.size)
     return DGPResult(sols, subs, time.perf_counter() - t0, seed, options)
