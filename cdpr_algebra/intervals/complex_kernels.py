@@ -20,8 +20,8 @@ import numba as nb
 import numpy as np
 from numba import types as nbt
 
-from .arithmetic import _FLOOR, _INF
-from .scalar_kernels import rounding_gamma, s_add, s_down, s_mid, s_midrad, s_mul, s_sub, s_up
+from .arithmetic import _INF
+from .scalar_kernels import rounding_gamma, s_add, s_down, s_mid, s_midrad, s_mr_bound, s_mul, s_sub, s_up
 
 __all__ = ["OPERATIONS", "EVALUATOR_SIG", "krawczyk_kernel"]
 
@@ -158,27 +158,25 @@ _EVAL = nbt.FunctionType(EVALUATOR_SIG)
 
 
 @nb.njit(cache=True, error_model="numpy")
-def _mr_product(Am, Ar, Bm, Br, lo, hi):
-    """[lo, hi] encloses {A B : |A - Am| <= Ar, |B - Bm| <= Br} (:func:`.operators.mr_matmul`; Ar None there is
-    Ar = 0 here: the terms it adds are exact zeros)."""
+def _mr_product(Am, Ar, Bm, Br, with_ar, lo, hi):
+    """[lo, hi] encloses {A B : |A - Am| <= Ar, |B - Bm| <= Br} (:func:`.operators.mr_matmul`; ``with_ar`` False: A
+    is the point matrix Am, Ar unused, as Ar None there), the radius by :func:`.scalar_kernels.s_mr_bound`."""
     k = Am.shape[1]
     g = rounding_gamma(k)
     aA = np.abs(Am)
     S1 = Am @ Bm
-    BB = np.empty_like(Bm)
-    for i in range(Bm.shape[0]):
-        for j in range(Bm.shape[1]):
-            BB[i, j] = s_up(abs(Bm[i, j]) + Br[i, j])
-    S2r = aA @ Br + Ar @ BB
+    S2r = aA @ Br
+    if with_ar:
+        BB = np.empty_like(Bm)
+        for i in range(Bm.shape[0]):
+            for j in range(Bm.shape[1]):
+                BB[i, j] = s_up(abs(Bm[i, j]) + Br[i, j])
+        S2r += Ar @ BB
     S3 = aA @ np.abs(Bm)
     for i in range(S1.shape[0]):
         for j in range(S1.shape[1]):
             s2 = s_up(S2r[i, j])
-            s3 = S3[i, j] + s2
-            s3 = s3 if s3 > _FLOOR else _FLOOR
-            W = (s2 + s3 * g) * (1.0 + g + 2.0 ** -47) + abs(S1[i, j]) * 2.0 ** -50 + k * 2.0 ** -1022
-            lo[i, j] = S1[i, j] - W
-            hi[i, j] = S1[i, j] + W
+            lo[i, j], hi[i, j] = s_mr_bound(S1[i, j], s2, S3[i, j] + s2, g, k)
 
 
 @nb.njit(nbt.void(_EVAL, _EVAL, nbt.float64[:, ::1], nbt.float64[:, ::1], nbt.float64[:, :, ::1],
@@ -200,7 +198,6 @@ def krawczyk_kernel(jac, res, Y, R, P, Klo, Khi, ok):
     Jr = np.zeros((h, h))
     Fm = np.zeros((h, 1))
     Fr = np.zeros((h, 1))
-    zero = np.zeros((h, h))
     C = np.zeros((h, h))
     Mlo = np.zeros((h, h))
     Mhi = np.zeros((h, h))
@@ -263,11 +260,11 @@ def krawczyk_kernel(jac, res, Y, R, P, Klo, Khi, ok):
         for k in range(n):
             Fm[k, 0], Fr[k, 0] = s_midrad(F[k, 0], F[k, 1])
             Fm[n + k, 0], Fr[n + k, 0] = s_midrad(F[k, 2], F[k, 3])
-        _mr_product(C, zero, Fm, Fr, CFlo, CFhi)  # C F(y)
+        _mr_product(C, C, Fm, Fr, False, CFlo, CFhi)  # C F(y)
         for a in range(h):
             for b in range(h):
                 Jm[a, b], Jr[a, b] = s_midrad(Jlo[a, b], Jhi[a, b])
-        _mr_product(C, zero, Jm, Jr, Mlo, Mhi)  # C J(X), then I - C J(X)
+        _mr_product(C, C, Jm, Jr, False, Mlo, Mhi)  # C J(X), then I - C J(X)
         for a in range(h):
             for b in range(h):
                 d = 1.0 if a == b else 0.0
@@ -276,7 +273,7 @@ def krawczyk_kernel(jac, res, Y, R, P, Klo, Khi, ok):
         for k in range(h):  # X - y
             dl, dh = s_sub(Y[i, k] - R[i, k], Y[i, k] + R[i, k], Y[i, k], Y[i, k])
             Dm[k, 0], Dr[k, 0] = s_midrad(dl, dh)
-        _mr_product(Mm, Mr, Dm, Dr, MDlo, MDhi)
+        _mr_product(Mm, Mr, Dm, Dr, True, MDlo, MDhi)
         for k in range(h):
             yl, yh = s_sub(Y[i, k], Y[i, k], CFlo[k, 0], CFhi[k, 0])
             Klo[i, k], Khi[i, k] = s_add(yl, yh, MDlo[k, 0], MDhi[k, 0])
