@@ -500,18 +500,14 @@ def _compiled_krawczyk(robot, rho, rows, f_iv):
     from cdpr_algebra.intervals.arithmetic import Interval
     from cdpr_algebra.intervals.complex_kernels import krawczyk_kernel
 
-    N, m = rows.shape
-    P = np.zeros((N, 7 * m + 6, 4))
-    for i in range(m):
-        cab = rows[:, i]
-        for k in range(3):
-            P[:, 3 * i + k, 0] = P[:, 3 * i + k, 1] = robot.base[cab, k]
-            P[:, 4 * m + 3 * i + k, 0] = P[:, 4 * m + 3 * i + k, 1] = robot.platform[cab, k]
-        r2 = Interval.point(rho[cab]).sqr()
-        P[:, 3 * m + i, 0], P[:, 3 * m + i, 1] = r2.lo, r2.hi
-    for k in range(3):
-        P[:, 7 * m + k, 0] = P[:, 7 * m + k, 1] = float(robot.com[k])
-        P[:, 7 * m + 3 + k, 0], P[:, 7 * m + 3 + k, 1] = float(np.min(f_iv[k].lo)), float(np.max(f_iv[k].hi))
+    m = rows.shape[1]
+    A = [[robot.base[rows[:, i], k] for k in range(3)] for i in range(m)]
+    b = [[robot.platform[rows[:, i], k] for k in range(3)] for i in range(m)]
+    rho2 = [Interval.point(rho[rows[:, i]]).sqr() for i in range(m)]
+    params = _parameters(A, b, [float(c) for c in robot.com], f_iv, rho2)
+    P = np.zeros((len(rows), len(params), 4))  # (lo, hi, 0, 0): real intervals
+    for k, v in enumerate(params):
+        P[:, k, 0], P[:, k, 1] = (v.lo, v.hi) if isinstance(v, Interval) else (v, v)
 
     def kernel(part, y, r):
         y = np.ascontiguousarray(y, dtype=float)
