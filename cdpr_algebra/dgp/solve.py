@@ -661,14 +661,6 @@ def _with_endpoint_certificates(robot, rho, items) -> list:
     return out
 
 
-def _solved_and_certified(robot, rho, cables, seed, certify, options, exclude):
-    """:func:`_solve_and_certify_solutions` of one taut set with its endpoint certificates
-    (:func:`_with_endpoint_certificates`): (DGPSubproblem, solutions, None)."""
-    sub, sols, Z = _solve_and_certify_solutions(robot, rho, cables, seed, certify, options, exclude)
-    (sub,) = _with_endpoint_certificates(robot, rho, [(cables, sub, Z)])
-    return sub, sols, None
-
-
 def _merge(solutions, L):
     """One solution per pose (within 1e-7 L): the one with the fewest taut cables (first in subproblem order among
     equals); the others are kept as its ``alternatives`` (a pose held by several taut sets, e.g. every valid cable
@@ -720,7 +712,7 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
         # batch costs per root, not per round), so no batch of certificates waits for the last set of its m
         # (seed 000 Test 3: per-m batches after the last set of each m left 0.3-0.6 s of one core idle at the end)
         with ThreadPoolExecutor(max_workers=min(jobs, len(heavy))) as ex:
-            futs = {ex.submit(_solved_and_certified, robot, rho, c, seed, certify, options, exclude): c
+            futs = {ex.submit(solve_taut_set, robot, rho, c, seed, certify, options, exclude): c
                     for c in sorted(heavy, key=lambda c: -len(c))}
             for c in light:
                 results[c] = _solve_and_certify_solutions(robot, rho, c, seed, certify, options, exclude)
@@ -729,7 +721,7 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
                     progress(results[c][0], done, len(sets))
             for f in as_completed(futs):
                 c = futs[f]
-                results[c] = f.result()
+                results[c] = (*f.result(), None)  # endpoints certified by the task
                 done += 1
                 if progress:
                     progress(results[c][0], done, len(sets))
