@@ -697,14 +697,19 @@ def _run(homotopy, X0, idx, opts: SolveOptions, tr: TrackerOptions):
     return _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order)
 
 
+def _agree(a, b, tol: float):
+    """Rows of a and b (broadcast) agree in every coordinate to tol (1 + the larger modulus of that coordinate): the
+    test of :func:`duplicate_groups` and :func:`coincides_with_any`."""
+    return np.all(np.abs(a - b) <= tol * (1 + np.maximum(np.abs(a), np.abs(b))), axis=-1)
+
+
 def coincides_with_any(points, x, tol: float) -> bool:
-    """x agrees with some row of ``points`` in every coordinate to tol (1 + the larger modulus of that coordinate):
-    the test of :func:`duplicate_groups`, for one point against many."""
+    """x agrees with some row of ``points`` (:func:`_agree`): the test of :func:`duplicate_groups`, for one point
+    against many."""
     points = np.asarray(points)
     if not len(points):
         return False
-    scale = 1 + np.maximum(np.abs(points), np.abs(x))
-    return bool(np.any(np.all(np.abs(points - x) <= tol * scale, axis=1)))
+    return bool(np.any(_agree(points, x, tol)))
 
 
 DUPLICATE_CHUNK = 1 << 16  # candidate pairs tested at once by duplicate_groups
@@ -733,8 +738,7 @@ def duplicate_groups(points: np.ndarray, tol: float) -> list:
         a = np.repeat(np.arange(start, stop), c)
         b = a + 1 + (np.arange(len(a)) - np.repeat(np.cumsum(c) - c, c))
         i, j = order[a], order[b]
-        scale = 1 + np.maximum(np.abs(points[i]), np.abs(points[j]))
-        same = np.all(np.abs(points[i] - points[j]) <= tol * scale, axis=1)
+        same = _agree(points[i], points[j], tol)
         pi.append(i[same])
         pj.append(j[same])
         start = stop
