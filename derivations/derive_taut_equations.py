@@ -226,7 +226,7 @@ def generate() -> dict[str, str]:
            '"""\n')
     text = HEADER.format(script=Path(__file__).name) + doc + "\n".join(L + Fo + P) + "\n"
     # the residual with the evaluator signature: F at a box's centre in the form (and roundings) of taut_residual
-    Fi = [Fo[0], Fo[1], "def taut_residual(x, p, dp, F, J, Ht, with_ht):"] + Fo[3:]
+    Fi = [line.replace("def taut_residual(x, p, F):", "def taut_residual(x, p, dp, F, J, Ht, with_ht):") for line in Fo]
     return {TARGET: text, INTERVAL_TARGET: _interval_text("\n".join(L + Fi) + "\n")}
 
 

@@ -81,8 +81,7 @@ class _Rewrite(ast.NodeTransformer):
 
     # ---- statements
     def visit_Assign(self, node):
-        targets = [e for t in node.targets for e in (t.elts if isinstance(t, ast.Tuple) else [t])]
-        if all(isinstance(t, ast.Name) and t.id in self.index for t in targets):
+        if all(isinstance(t, ast.Name) and t.id in self.index for t in _targets(node)):
             if not self.is_index(node.value):
                 raise ValueError(f"index name assigned a value: {ast.unparse(node)!r}")
             return node
@@ -147,6 +146,11 @@ def _call(name, *args):
     return ast.Call(ast.Name(name, ast.Load()), list(args), [])
 
 
+def _targets(node: ast.Assign) -> list:
+    """The target nodes of an assignment, tuples unpacked (``a, b = ...``, ``a = b = ...``)."""
+    return [e for t in node.targets for e in (t.elts if isinstance(t, ast.Tuple) else [t])]
+
+
 def _index_names(fn: ast.FunctionDef) -> set:
     """Names that hold integers for indexing: the names inside subscripts and ``range(...)`` calls, loop variables,
     and (transitively) the names their assignments read."""
@@ -167,9 +171,7 @@ def _index_names(fn: ast.FunctionDef) -> set:
         for node in ast.walk(fn):
             if not isinstance(node, ast.Assign):
                 continue
-            names = set()
-            for t in node.targets:
-                names |= {e.id for e in (t.elts if isinstance(t, ast.Tuple) else [t]) if isinstance(e, ast.Name)}
+            names = {e.id for e in _targets(node) if isinstance(e, ast.Name)}
             if names & index:
                 reads = {n.id for n in ast.walk(node.value) if isinstance(n, ast.Name)} - {"len"}
                 if not reads <= index:
@@ -191,11 +193,10 @@ def _localize_loops(fn: ast.FunctionDef) -> None:
                 reads.add(stmt.target.id)
             seen |= reads
             if isinstance(stmt, ast.Assign):
-                for t in stmt.targets:
-                    for e in (t.elts if isinstance(t, ast.Tuple) else [t]):
-                        if isinstance(e, ast.Name) and e.id not in seen:
-                            local.add(e.id)
-                            seen.add(e.id)
+                for e in _targets(stmt):
+                    if isinstance(e, ast.Name) and e.id not in seen:
+                        local.add(e.id)
+                        seen.add(e.id)
         for node in ast.walk(ast.Module(body=loop.body, type_ignores=[])):
             if isinstance(node, ast.Name) and node.id in local:
                 node.id = f"{node.id}__{k}"
@@ -219,29 +220,19 @@ def complex_interval_source(source: str, flags=("with_ht",), real=("p", "dp")) -
         body = fn.body
         if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
             body = body[1:]  # the docstring is replaced by the caller's
-        new = []
-        for stmt in body:
-            new += _statements(rw, stmt)
-        fn.body = new
+        fn.body = _block(rw, body)
         out.append(fn)
     return "\n\n\n".join(ast.unparse(ast.fix_missing_locations(f)) for f in out) + "\n"
 
 
-def _statements(rw, stmt):
-    if isinstance(stmt, ast.For):
-        body = []
-        for s in stmt.body:
-            body += _statements(rw, s)
-        stmt.body = body
-        return [stmt]
-    if isinstance(stmt, ast.If):
-        body = []
-        for s in stmt.body:
-            body += _statements(rw, s)
-        orelse = []
-        for s in stmt.orelse:
-            orelse += _statements(rw, s)
-        stmt.body, stmt.orelse = body, orelse
-        return [stmt]
-    r = rw.visit(stmt)
-    return r if isinstance(r, list) else [r]
+def _block(rw, stmts) -> list:
+    """The statements ``stmts`` rewritten (the bodies of ``for`` and ``if`` recursively, in place)."""
+    out = []
+    for stmt in stmts:
+        if isinstance(stmt, (ast.For, ast.If)):
+            stmt.body, stmt.orelse = _block(rw, stmt.body), _block(rw, stmt.orelse)
+            out.append(stmt)
+        else:
+            r = rw.visit(stmt)
+            out += r if isinstance(r, list) else [r]
+    return out
