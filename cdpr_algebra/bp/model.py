@@ -3,6 +3,7 @@ reference and secondary points, initial search domain, quadratic system; exact h
 
 from __future__ import annotations
 
+import functools
 import itertools
 from fractions import Fraction
 import numpy as np
@@ -80,6 +81,19 @@ def _cross_list(a, b):
     return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 
 
+@functools.lru_cache(maxsize=16)
+def _platform_distances(points):
+    """({(k, l): |P_k - P_l|^2 exact}, {(k, l): enclosure of |P_k - P_l|}) for every pair of the platform points
+    ``points`` (a tuple of float triples: the anchors b_i' and G): the same for every taut set of a robot."""
+    P = [_F(pt) for pt in points]
+    d2, d = {}, {}
+    for k, l in itertools.combinations(range(len(P)), 2):
+        w = _fsub(P[k], P[l])
+        d2[(k, l)] = d2[(l, k)] = _fdot(w, w)
+        d[(k, l)] = d[(l, k)] = _Isqrt(d2[(k, l)])
+    return d2, d
+
+
 class SkipSubproblem(Exception):
     pass
 
@@ -101,6 +115,9 @@ class Model:
         bF = [_F(b) for b in robot.platform]
         gF = _F(robot.com)
         self.platF = bF + [gF]  # platform points: anchors 0..n-1, G = n
+        # exact squared distances between platform points and enclosures of the distances (per robot, cached)
+        self._pd2, self._pd = _platform_distances(tuple(tuple(float(c) for c in pt)
+                                                        for pt in list(robot.platform) + [robot.com]))
         self.G_id = self.n
         if self.m == 2:
             self._frame_planar()
@@ -273,8 +290,7 @@ class Model:
         self.d2 = {}
         for p in range(npl):
             for q in range(p + 1, npl):
-                w = _fsub(P[self.plat_ids[p]], P[self.plat_ids[q]])
-                self.d2[(p, q)] = _fdot(w, w)
+                self.d2[(p, q)] = self._pd2[(self.plat_ids[p], self.plat_ids[q])]
         if self.use_n:
             r = [P[k] for k in self.refs_plat]
             nrm = _fcross(_fsub(r[1], r[0]), _fsub(r[2], r[0]))
@@ -383,8 +399,7 @@ class Model:
                 if k == j:
                     r = rho[j]
                 else:
-                    w = _fsub(P[k], P[j])
-                    r = rho[j] + _Isqrt(_fdot(w, w))
+                    r = rho[j] + self._pd[(k, j)]
                 box = Interval(A.lo[j], A.hi[j]) + Interval(-r.hi, r.hi)
                 blo = np.maximum(blo, box.lo)
                 bhi = np.minimum(bhi, box.hi)
@@ -426,8 +441,7 @@ class Model:
                     else:
                         add_sphere(p, Alo, Ahi, -_INF, r2.hi)
                     continue
-                w = _fsub(P[k], P[j])
-                d = _Isqrt(_fdot(w, w))
+                d = self._pd[(k, j)]
                 upper = (rho[j] + d).sqr().hi
                 lower = -_INF
                 if j in taut:
@@ -470,56 +484,42 @@ class Model:
         self._statics_rows()
 
     def _statics_rows(self):
+        """The rows of the statics filter: row r reads sum_k lam_k (kc[r, k] . B_k + k0[r, k]) + hc[r] . G + h0[r]
+        = 0 over the active cables of the row.  Force rows along u: kc = -u, k0 = A_k . u, hc = 0, h0 = f . u;
+        moment rows about a point P along U (A_taut - P) x U, -P . that, f x U, -P . f x U, every moment row of
+        every pole and axis computed in one vectorized pass (the same outward-rounded operations as row by row)."""
         m = self.m
         A = self.A
         f = self.f
-        Ai = [Interval(A.lo[i], A.hi[i]) for i in self.cables]
+        cab = list(self.cables)
+        A_taut = Interval(A.lo[cab], A.hi[cab])  # (m, 3)
+        eye = np.eye(3)
+        rows = []  # ("F", u) or ("M", pole, direction, inactive cables); u, pole, direction: Intervals (3,)
+        P0 = Interval.point(self.P0)
+
+        def Ai(k):
+            return Interval(A.lo[cab[k]], A.hi[cab[k]])
 
         def unit(c):
-            e = np.zeros(3)
-            e[c] = 1.0
-            return Interval(e, e)
+            return Interval(eye[c], eye[c])
 
-        A_taut = Interval(A.lo[list(self.cables)], A.hi[list(self.cables)])  # (m, 3): the rows over all cables at once
-
-        def force_row(u):
-            kc = [Interval(-u.hi, -u.lo) for _ in range(m)]
-            k0 = _idot(A_taut, u)
-            return (kc, [k0[k] for k in range(m)], Interval(np.zeros(3), np.zeros(3)), _idot(f, u), [True] * m)
-
-        def moment_rows(Pt, U, inactive):
-            """The rows of the moments about the point Pt along each direction of U (r, 3)."""
-            WU = _icross(Interval(A_taut.lo[None], A_taut.hi[None]) - Pt, Interval(U.lo[:, None], U.hi[:, None]))
-            K0 = -_idot(Pt, WU)  # (r, m)
-            FU = _icross(f, U)  # (r, 3)
-            F0 = -_idot(Pt, FU)
-            return [([WU[j, k] for k in range(m)], [K0[j, k] for k in range(m)], FU[j], F0[j],
-                      [k not in inactive for k in range(m)]) for j in range(len(U.lo))]
-
-        def moment_row(Pt, u, inactive):
-            return moment_rows(Pt, Interval(u.lo[None], u.hi[None]), inactive)[0]
-
-        P0 = Interval.point(self.P0)
         if self.frame == "planar":
-            base = [force_row(unit(0)), force_row(unit(2)), moment_row(P0, unit(1), ())]
-            extra = [moment_row(Ai[k], unit(1), (k,)) for k in range(m)]
+            rows += [("F", unit(0)), ("F", unit(2)), ("M", P0, unit(1), ())]
+            nbase = len(rows)
+            rows += [("M", Ai(k), unit(1), (k,)) for k in range(m)]
         else:
-            base = [force_row(unit(c)) for c in range(3)] + moment_rows(P0, Interval(np.eye(3), np.eye(3)), ())
-            extra = []
+            rows += [("F", unit(c)) for c in range(3)] + [("M", P0, unit(c), ()) for c in range(3)]
+            nbase = len(rows)
             dd = np.asarray(self.robot.load_direction, dtype=float)
             if np.count_nonzero(dd) > 1:
-                extra.append(force_row(Interval.point(dd)))
+                rows.append(("F", Interval.point(dd)))
             if "poles" in self.statics_rows:
-                for k in range(m):
-                    extra += moment_rows(Ai[k], Interval(np.eye(3), np.eye(3)), (k,))
+                rows += [("M", Ai(k), unit(c), (k,)) for k in range(m) for c in range(3)]
             for k1, k2 in (itertools.combinations(range(m), 2) if "axes" in self.statics_rows else ()):
-                axis = Ai[k2] - Ai[k1]
                 inactive = tuple(k for k in range(m) if k in (k1, k2) or
-                                 (np.array_equal(Ai[k].lo, Ai[k1].lo) or np.array_equal(Ai[k].lo, Ai[k2].lo)))
-                extra.append(moment_row(Ai[k1], axis, inactive))
-        allrows = base + extra
-        self.nbase = len(base)
-        R = len(allrows)
+                                 (np.array_equal(Ai(k).lo, Ai(k1).lo) or np.array_equal(Ai(k).lo, Ai(k2).lo)))
+                rows.append(("M", Ai(k1), Ai(k2) - Ai(k1), inactive))
+        R = len(rows)
         kc_lo = np.zeros((R, m, 3))
         kc_hi = np.zeros((R, m, 3))
         k0_lo = np.zeros((R, m))
@@ -528,15 +528,35 @@ class Model:
         hc_hi = np.zeros((R, 3))
         h0_lo = np.zeros(R)
         h0_hi = np.zeros(R)
-        act = np.zeros((R, m), bool)
-        for r, (kc, k0, hc, h0, active) in enumerate(allrows):
-            for k in range(m):
-                if active[k]:
-                    kc_lo[r, k], kc_hi[r, k] = kc[k].lo, kc[k].hi
-                    k0_lo[r, k], k0_hi[r, k] = k0[k].lo, k0[k].hi
-            hc_lo[r], hc_hi[r] = hc.lo, hc.hi
-            h0_lo[r], h0_hi[r] = h0.lo, h0.hi
-            act[r] = active
+        act = np.ones((R, m), bool)
+        fr = [r for r in range(R) if rows[r][0] == "F"]
+        mr = [r for r in range(R) if rows[r][0] == "M"]
+        if fr:
+            U = Interval(np.array([rows[r][1].lo for r in fr]), np.array([rows[r][1].hi for r in fr]))  # (F, 3)
+            K0 = _idot(A_taut[None], U[:, None])  # (F, m)
+            H0 = _idot(f, U)  # (F,)
+            kc_lo[fr] = -U.hi[:, None, :]
+            kc_hi[fr] = -U.lo[:, None, :]
+            k0_lo[fr], k0_hi[fr] = K0.lo, K0.hi
+            h0_lo[fr], h0_hi[fr] = H0.lo, H0.hi
+        if mr:
+            Pt = Interval(np.array([rows[r][1].lo for r in mr]), np.array([rows[r][1].hi for r in mr]))  # (M, 3)
+            U = Interval(np.array([rows[r][2].lo for r in mr]), np.array([rows[r][2].hi for r in mr]))
+            WU = _icross(A_taut[None] - Pt[:, None], U[:, None])  # (M, m, 3)
+            K0 = -_idot(Pt[:, None], WU)  # (M, m)
+            FU = _icross(f, U)  # (M, 3)
+            F0 = -_idot(Pt, FU)  # (M,)
+            kc_lo[mr], kc_hi[mr] = WU.lo, WU.hi
+            k0_lo[mr], k0_hi[mr] = K0.lo, K0.hi
+            hc_lo[mr], hc_hi[mr] = FU.lo, FU.hi
+            h0_lo[mr], h0_hi[mr] = F0.lo, F0.hi
+            for j, r in enumerate(mr):
+                act[r, list(rows[r][3])] = False
+        kc_lo[~act] = 0.0
+        kc_hi[~act] = 0.0
+        k0_lo[~act] = 0.0
+        k0_hi[~act] = 0.0
+        self.nbase = nbase
         self.st_kc = Interval(kc_lo, kc_hi)
         self.st_k0 = Interval(k0_lo, k0_hi)
         self.st_hc = Interval(hc_lo, hc_hi)
