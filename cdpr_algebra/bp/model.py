@@ -392,7 +392,6 @@ class Model:
         hi = np.full(self.ncols, _INF)
         A = self.A
         rho = Interval.point(self.rho)
-        P = self.platF
         for p, k in enumerate(self.plat_ids):
             blo, bhi = np.full(3, -_INF), np.full(3, _INF)
             for j in range(self.n):
@@ -418,7 +417,6 @@ class Model:
     # -- filter data --------------------------------------------------------------------------------------------------
     def _filters(self):
         n = self.n
-        P = self.platF
         rho = Interval.point(self.rho)
         taut = set(self.cables)
         # spheres: (point, center (3,), R2 interval)
