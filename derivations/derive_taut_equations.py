@@ -12,6 +12,8 @@ full dF/dp), and writes plain-arithmetic loop code over the cables, common subex
         taut_equations(x, p, dp, F, J, Ht, with_ht)   F, the nonzero pattern of J, and Ht when with_ht
         taut_residual(x, p, F)                         F alone
         taut_parameter_jacobian(x, p, JP)              the nonzero pattern of dF/dp
+    cdpr_algebra/generated/taut_equations_intervals.py   taut_equations, taut_residual over complex intervals
+    cdpr_algebra/generated/taut_residual_dd.py           taut_residual in complex double-double
 
 x = (p, u, v, w, lam_1..lam_m), p = (A_i (3m), rho_i^2 (m), b'_i (3m), g' (3), Q d (3)) in the family's order.
 The code uses only + - * and indexing ``F[r]``, ``J[r, c]``, so the same function runs compiled by numba on one
@@ -38,6 +40,7 @@ from cdpr_algebra.model.taut_equations import taut_family  # noqa: E402
 
 TARGET = "cdpr_algebra/generated/taut_equations.py"
 INTERVAL_TARGET = "cdpr_algebra/generated/taut_equations_intervals.py"
+DD_TARGET = "cdpr_algebra/generated/taut_residual_dd.py"
 POSE = ["P0", "P1", "P2", "u0", "u1", "u2", "v0", "v1", "v2", "w0", "w1", "w2"]
 GLOBAL_PARAMS = ["g0", "g1", "g2", "f0", "f1", "f2"]
 CABLE_PARAMS = ["a0", "a1", "a2", "r2", "b0", "b1", "b2"]
@@ -227,7 +230,8 @@ def generate() -> dict[str, str]:
     text = HEADER.format(script=Path(__file__).name) + doc + "\n".join(L + Fo + P) + "\n"
     # the residual with the evaluator signature: F at a box's centre in the form (and roundings) of taut_residual
     Fi = [line.replace("def taut_residual(x, p, F):", "def taut_residual(x, p, dp, F, J, Ht, with_ht):") for line in Fo]
-    return {TARGET: text, INTERVAL_TARGET: _interval_text("\n".join(L + Fi) + "\n")}
+    return {TARGET: text, INTERVAL_TARGET: _interval_text("\n".join(L + Fi) + "\n"),
+            DD_TARGET: _double_double_text("\n".join(Fo) + "\n")}
 
 
 def _interval_text(source: str) -> str:
@@ -254,6 +258,32 @@ def _interval_text(source: str) -> str:
     for name in ("taut_equations", "taut_residual"):
         body = body.replace(f"def {name}(", '@nb.njit(EVALUATOR_SIG, cache=True, error_model="numpy", nogil=True)\n'
                             f"def {name}(", 1)
+    return HEADER.format(script=Path(__file__).name) + doc + body
+
+
+def _double_double_text(source: str) -> str:
+    """taut_residual rewritten over complex double-double numbers (every array complex: the tracker's parameters
+    p(t) are complex; :func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source`, constants (v, 0)), compiled by
+    numba with the residual signature of :mod:`cdpr_algebra.homotopy.double_double`."""
+    from cdpr_algebra.intervals.codegen import pair_arithmetic_source
+
+    from cdpr_algebra.homotopy.double_double import OPERATIONS
+
+    body = pair_arithmetic_source(source, flags=(), real=(), constant_second=0.0)
+    used = [op for op in OPERATIONS if f"{op}(" in body]
+    doc = ('"""The residual F of the DGP equations per taut set in double-double: ``taut_residual`` of\n'
+           ":mod:`cdpr_algebra.generated.taut_equations` rewritten by\n"
+           ":func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source` over complex double-double numbers (values\n"
+           "are (re hi, re lo, im hi, im lo); x (12 + m, 4), p (7 m + 6, 4), F (12 + m, 4); operations of\n"
+           ":mod:`cdpr_algebra.homotopy.double_double`), compiled by numba for the extended-precision Newton residual of\n"
+           "the compiled tracker (:mod:`cdpr_algebra.homotopy.compiled`).\n"
+           '"""\n\n'
+           "import numba as nb\n\n"
+           "from cdpr_algebra.homotopy.double_double import RESIDUAL_SIG\n"
+           f"from cdpr_algebra.homotopy.double_double import {', '.join(sorted(used))}  # noqa: F401\n"
+           "\n\n")
+    body = body.replace("def taut_residual(", '@nb.njit(RESIDUAL_SIG, cache=True, error_model="numpy", nogil=True)\n'
+                        "def taut_residual(", 1)
     return HEADER.format(script=Path(__file__).name) + doc + body
 
 

@@ -1,4 +1,5 @@
-"""Plain-arithmetic evaluators rewritten for rectangular complex intervals (source to source, for generated code).
+"""Plain-arithmetic evaluators rewritten for rectangular complex intervals, or for double-double numbers (source to
+source, for generated code).
 
 A generated evaluator such as ``taut_equations(x, p, dp, F, J, Ht, with_ht)`` uses only ``+ - *``, unary minus,
 numeric constants, index arithmetic and subscripts ``x[k]``, ``F[r] = ...``, ``J[r, c] = ...``.
@@ -11,13 +12,17 @@ kinds of its operands (``cr_mul``: complex times real, ...).  A real operand tou
 those of the Python objects.  Index arithmetic (``m = len(x) - 12``, ``ia + 3 * i + 0``, loop variables) is left as
 it is.  The rewrite is mechanical: the interval evaluator has the same single source as the float one (the
 derivation that generated it).
+
+:func:`pair_arithmetic_source` is the same rewrite for any arithmetic on such tuples whose operations carry these
+names; it differs only in how a real constant v is written: (v, v) for an interval, (v, 0.0) for a double-double
+(hi, lo) (:mod:`cdpr_algebra.homotopy.double_double`, the residuals of the tracker's extended-precision Newton).
 """
 
 from __future__ import annotations
 
 import ast
 
-__all__ = ["complex_interval_source"]
+__all__ = ["complex_interval_source", "pair_arithmetic_source"]
 
 
 _OPS = {ast.Add: "add", ast.Sub: "sub", ast.Mult: "mul"}
@@ -27,8 +32,9 @@ class _Rewrite(ast.NodeTransformer):
     """The rewrite of one function: ``arrays`` its value arrays (``real`` ones hold real intervals), ``index`` its
     index names, ``complex_names`` the names that ever hold a complex value (the others hold real ones)."""
 
-    def __init__(self, arrays, real, index, complex_names):
+    def __init__(self, arrays, real, index, complex_names, second=None):
         self.arrays, self.real, self.index, self.cplx = arrays, real, index, complex_names
+        self.second = second  # the second entry of a real constant v: None for v itself (an interval), or a number
 
     # ---- classification
     def is_index(self, node) -> bool:
@@ -53,7 +59,8 @@ class _Rewrite(ast.NodeTransformer):
             if isinstance(node.value, bool) or not isinstance(node.value, (int, float)):
                 raise ValueError(f"constant {node.value!r} in a value expression")
             v = float(node.value)
-            return ast.Tuple([ast.Constant(v), ast.Constant(v)], ast.Load()), False
+            w = v if self.second is None else float(self.second)
+            return ast.Tuple([ast.Constant(v), ast.Constant(w)], ast.Load()), False
         if isinstance(node, ast.Name):
             if node.id in self.index:
                 raise ValueError(f"index name {node.id!r} used as a value")
@@ -207,6 +214,12 @@ def complex_interval_source(source: str, flags=("with_ht",), real=("p", "dp")) -
     named in ``flags`` keep their meaning (booleans); every other argument is an array of values, complex
     intervals except those named in ``real`` (real intervals (lo, hi); entries (lo, hi, 0, 0) of an array with
     the trailing axis of 4).  Raises ValueError on anything but plain arithmetic."""
+    return pair_arithmetic_source(source, flags, real)
+
+
+def pair_arithmetic_source(source: str, flags=("with_ht",), real=("p", "dp"), constant_second=None) -> str:
+    """:func:`complex_interval_source` with real constants v written (v, ``constant_second``) (None: (v, v)), for
+    another arithmetic on the same tuples (module doc)."""
     tree = ast.parse(source)
     out = []
     for fn in tree.body:
@@ -216,7 +229,7 @@ def complex_interval_source(source: str, flags=("with_ht",), real=("p", "dp")) -
         _localize_loops(fn)
         index = _index_names(fn) - arrays
         real_arrays = {a for a in arrays if a in real}
-        rw = _Rewrite(arrays, real_arrays, index, _complex_names(fn, arrays, real_arrays, index))
+        rw = _Rewrite(arrays, real_arrays, index, _complex_names(fn, arrays, real_arrays, index), constant_second)
         body = fn.body
         if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
             body = body[1:]  # the docstring is replaced by the caller's
