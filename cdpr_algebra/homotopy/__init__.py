@@ -4,7 +4,8 @@ Flat topic modules, after HomotopyContinuation.jl:
 
 * :mod:`.systems` -- polynomial systems with parameters, compiled once into batched numpy evaluators;
 * :mod:`.homotopies` -- straight-line (gamma trick) and parameter homotopies;
-* :mod:`.tracker` -- vectorized RK4 / Newton path tracker of one segment, :func:`track_segment`;
+* :mod:`.tracker` -- vectorized RK4 / Newton path tracker of one segment, :func:`track_segment` (compiled:
+  :mod:`.compiled`, with Newton residuals in double-double where double precision stalls, :mod:`.double_double`);
 * :mod:`.endgame` -- Cauchy endgame, at-infinity test, Newton refinement, retries (double, mpmath);
 * :mod:`.start_systems` -- total degree, multi-homogeneous (linear product), parameter homotopy;
 * :mod:`.monodromy` -- generic solution sets from one seed point, saved/loaded instances;

@@ -37,7 +37,9 @@ import numpy as np
 import numba as nb
 from numba import types as nbt
 
-__all__ = ["available", "track_kernel", "track_segment_compiled", "lu_factor_sparse_lead", "lu_apply_sparse_lead",
+from .double_double import RESIDUAL_SIG, cc_add, cc_mul, cc_sub, dd_parameters, to_complex, to_dd
+
+__all__ = ["available", "track_kernel", "track_segment_compiled", "residual_dd", "lu_factor_sparse_lead", "lu_apply_sparse_lead",
            "dense_factor", "dense_apply", "solve_with", "homogenized_eval", "homogenized_workspace", "FACTOR_SIG",
            "APPLY_SIG"]
 
@@ -63,6 +65,14 @@ FACTOR_SIG = nbt.boolean(_C2, _C2, _I1)
 APPLY_SIG = nbt.void(_C2, _C2, _I1, _C1, _C1)
 _FACTOR = nbt.FunctionType(FACTOR_SIG)
 _APPLY = nbt.FunctionType(APPLY_SIG)
+_RES = nbt.FunctionType(RESIDUAL_SIG)
+
+
+@nb.njit(RESIDUAL_SIG, cache=True)
+def no_residual_dd(x, p, F):
+    """The residual argument of :func:`track_kernel` for a system without a double-double residual (never called:
+    the kernel's ``opts`` say so)."""
+    return
 
 
 @nb.njit(cache=True, error_model="numpy")
@@ -211,6 +221,97 @@ def solve_with(factor, apply, J, b):
     return out
 
 
+@nb.njit(cache=True)
+def _dd_workspace(n1, mp, hom):
+    """(Xd, Pd, Fd, S) for :func:`_dd_rhs`: the point, the parameters and F in double-double, and (hom) the system's
+    point and its F at y, -y, 0."""
+    n = n1 - 1 if hom else n1
+    return np.zeros((n1, 4)), np.zeros((mp, 4)), np.zeros((n1, 4)), np.zeros((4, n, 4))
+
+
+@nb.njit(cache=True, error_model="numpy")
+def _dd_rhs(fres, hom, x, p1, p0, g, t, rhs, F, Xd, Pd, Fd, S):
+    """rhs = -F(x) at t with F evaluated in double-double and rounded (x, p1, p0, g, t in double; the parameter
+    path p(t) in double-double by :func:`.double_double.dd_parameters`); ``hom``: F of the homogenized system on
+    the chart that ends the parameters, F_h = y0^2 F(0) + y0 (F(y) - F(-y)) / 2 + (F(y) + F(-y)) / 2 - F(0) and
+    the chart row c . y - 1 (:func:`homogenized_eval`), every term in double-double."""
+    n1 = x.shape[0]
+    if not hom:
+        dd_parameters(p1, p0, g, t, Pd)
+        to_dd(x, Xd)
+        fres(Xd, Pd, Fd)
+        to_complex(Fd, F)
+    else:
+        n = n1 - 1
+        ma = p1.shape[0] - n1
+        dd_parameters(p1[:ma], p0[:ma], g, t, Pd[:ma])
+        Pa = Pd[:ma]
+        Y, Fp, Fm, F0 = S[0], S[1], S[2], S[3]
+        for j in range(n):
+            Y[j, 0], Y[j, 1], Y[j, 2], Y[j, 3] = x[j + 1].real, 0.0, x[j + 1].imag, 0.0
+        fres(Y, Pa, Fp)
+        for j in range(n):
+            Y[j, 0], Y[j, 2] = -Y[j, 0], -Y[j, 2]
+        fres(Y, Pa, Fm)
+        for j in range(n):
+            Y[j, 0], Y[j, 2] = 0.0, 0.0
+        fres(Y, Pa, F0)
+        y0 = (x[0].real, 0.0, x[0].imag, 0.0)
+        y00 = cc_mul(y0, y0)
+        for i in range(n):
+            fp = (Fp[i, 0], Fp[i, 1], Fp[i, 2], Fp[i, 3])
+            fm = (Fm[i, 0], Fm[i, 1], Fm[i, 2], Fm[i, 3])
+            f0 = (F0[i, 0], F0[i, 1], F0[i, 2], F0[i, 3])
+            d = cc_sub(fp, fm)
+            e = cc_add(fp, fm)
+            half_d = (0.5 * d[0], 0.5 * d[1], 0.5 * d[2], 0.5 * d[3])
+            half_e = (0.5 * e[0], 0.5 * e[1], 0.5 * e[2], 0.5 * e[3])
+            v = cc_sub(cc_add(cc_add(cc_mul(y00, f0), cc_mul(y0, half_d)), half_e), f0)
+            Fd[i, 0], Fd[i, 1], Fd[i, 2], Fd[i, 3] = v[0], v[1], v[2], v[3]
+        acc = (-1.0, 0.0, 0.0, 0.0)
+        for j in range(n1):
+            c = p1[ma + j]
+            acc = cc_add(acc, cc_mul((c.real, 0.0, c.imag, 0.0), (x[j].real, 0.0, x[j].imag, 0.0)))
+        Fd[n, 0], Fd[n, 1], Fd[n, 2], Fd[n, 3] = acc[0], acc[1], acc[2], acc[3]
+        to_complex(Fd, F)
+    for i in range(rhs.shape[0]):
+        rhs[i] = -F[i]
+
+
+@nb.njit(cache=True, error_model="numpy")
+def residual_dd_batch(fres, hom, X, P1, P0, G, T, out):
+    """Rows of ``out``: F at the rows of X at t = T[i] (the parameter path of :func:`track_kernel`, rows of P1, P0,
+    G per point or row 0 for all) evaluated in double-double by :func:`_dd_rhs` and rounded."""
+    N, n = X.shape
+    Xd, Pd, Fd, Sd = _dd_workspace(n, P1.shape[1], hom)
+    rhs = np.empty(n, np.complex128)
+    F = np.empty(n, np.complex128)
+    for i in range(N):
+        r = i if P1.shape[0] == N else 0
+        _dd_rhs(fres, hom, X[i], P1[r], P0[r], G[r], T[i], rhs, F, Xd, Pd, Fd, Sd)
+        for k in range(n):
+            out[i, k] = F[k]
+
+
+def residual_dd(homotopy, x, t):
+    """H(x, t) at the rows of x evaluated in double-double and rounded, for a parameter homotopy (or its projective
+    twin) whose system offers a double-double residual and compiled kernels; None otherwise."""
+    get = getattr(homotopy, "compiled_residual_dd", None)
+    kernels = getattr(homotopy, "compiled_kernels", None)
+    fres = get() if get is not None else None
+    kern = kernels() if kernels is not None else None
+    if fres is None or kern is None:
+        return None
+    hom = bool(kern[4]) if len(kern) > 4 else False
+    X = np.array(x, dtype=complex, order="C")
+    T = np.array(np.broadcast_to(np.asarray(t, dtype=complex), (len(X),)), order="C")
+    P1, P0, G = homotopy.path_parameters()
+    out = np.empty_like(X)
+    if len(X):
+        residual_dd_batch(fres, hom, X, P1, P0, G, T, out)
+    return out
+
+
 @nb.njit(cache=True, error_model="numpy")
 def _norm(v):
     s = 0.0
@@ -274,20 +375,28 @@ def _stage(fj, fjt, hom, factor, apply, x, t, dt, p1, p0, g, p, dp, F, J, Ht, A,
     return ok
 
 
-@nb.njit(nbt.void(_FJ, _FJT, _FACTOR, _APPLY, nbt.boolean, _C2, _C2, _C2, _C1, _C1, _C1, nbt.float64[::1],
-                  nbt.float64[::1], _C2, nbt.float64[::1], nbt.int64[::1], nbt.int64[::1], nbt.float64[::1]),
+@nb.njit(nbt.void(_FJ, _FJT, _FACTOR, _APPLY, _RES, nbt.boolean, _C2, _C2, _C2, _C1, _C1, _C1, nbt.float64[::1],
+                  nbt.float64[::1], _C2, nbt.float64[::1], nbt.int64[::1], nbt.int64[::1], nbt.float64[::1],
+                  nbt.boolean[::1]),
          cache=True, error_model="numpy", nogil=True)
-def track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xout, Sout, status, steps, Hout):
+def track_kernel(fj, fjt, factor, apply, fres, hom, X, P1, P0, G, TA, TB, H0, opts, Xout, Sout, status, steps, Hout,
+                 used_dd):
     """Track every row of X from t = TA[i] to TB[i] (see module doc).  ``opts`` = (initial_step, max_step,
-    min_step, max_steps, predictor_tol, corrector_tol, max_contraction, max_norm, noise_tol, step_safety); rows
-    of P1, P0, G are per path when they have as many rows as X, else row 0 serves every path.  With ``hom`` the
-    tracked system is the homogenization of (fj, fjt) on the chart that ends the parameters
-    (:func:`homogenized_eval`)."""
+    min_step, max_steps, predictor_tol, corrector_tol, max_contraction, max_norm, noise_tol, step_safety,
+    extended residual allowed); rows of P1, P0, G are per path when they have as many rows as X, else row 0 serves
+    every path.  With ``hom`` the tracked system is the homogenization of (fj, fjt) on the chart that ends the
+    parameters (:func:`homogenized_eval`).  ``fres``: the system's residual in double-double
+    (:mod:`.double_double`); when allowed, a path whose step had a good predictor (first update within
+    predictor_tol) but whose Newton corrections stalled, or stopped only at the round-off floor, takes its Newton
+    residuals from ``fres`` from then on (x, the Jacobians, the LU factors and the updates stay in double: mixed
+    precision iterative refinement, which converges for condition numbers up to ~1 / eps instead of stalling at
+    cond x eps) and the step is taken again; ``used_dd[i]`` says that path i did."""
     N, n = X.shape
     neq = n
     mp = P1.shape[1]
     max_step, min_step, max_steps = opts[1], opts[2], int(opts[3])
     ptol, ctol, mc, max_norm, noise_tol, safety = opts[4], opts[5], opts[6], opts[7], opts[8], opts[9]
+    dd_allowed = opts[10] != 0.0
     p = np.empty(mp, np.complex128)
     dp = np.empty(mp, np.complex128)
     F = np.empty(neq, np.complex128)
@@ -316,6 +425,7 @@ def track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xo
     d3 = np.empty(n, np.complex128)
     x2 = np.empty(n, np.complex128)
     ws = homogenized_workspace(n, mp, hom)
+    Xd, Pd, Fd, Sd = _dd_workspace(n, mp, hom)
     for i in range(N):
         r = i if P1.shape[0] == N else 0
         p1, p0, g = P1[r], P0[r], G[r]
@@ -330,6 +440,7 @@ def track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xo
         have_lu = False  # (Jc, Ac, pivc) factor H_x near x (at the predicted point of the last accepted step)
         have_k1 = False  # k1 is that of the current x (after a rejected step)
         rejected = False  # the last step was rejected (the next one does not grow)
+        use_dd = False  # Newton residuals in double-double (from the first step where double precision stalled)
         if dt == 0:
             st = OK
         while st == RUNNING:
@@ -354,14 +465,20 @@ def track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xo
             for c in range(n):
                 xt[c] = x[c] + (ha / 6.0) * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c])
             sn = s + ha
-            _params(p1, p0, g, ta + sn * dt, p, dp)
+            tn = ta + sn * dt
+            _params(p1, p0, g, tn, p, dp)
             # two Newton corrections at t(s + h): a Newton step, then a chord step with the same factors
             _newton_rhs(fj, fjt, hom, xt, p, F, Jn, rhs, ws)
+            if use_dd:
+                _dd_rhs(fres, hom, xt, p1, p0, g, tn, rhs, F, Xd, Pd, Fd, Sd)
             okn = factor(Jn, An, pivn)
             _lin(okn, apply, Jn, An, pivn, rhs, d1)
             for c in range(n):
                 xt[c] += d1[c]
-            _newton_rhs(fj, fjt, hom, xt, p, F, Js, rhs, ws)
+            if use_dd:
+                _dd_rhs(fres, hom, xt, p1, p0, g, tn, rhs, F, Xd, Pd, Fd, Sd)
+            else:
+                _newton_rhs(fj, fjt, hom, xt, p, F, Js, rhs, ws)
             _lin(okn, apply, Jn, An, pivn, rhs, d2)
             for c in range(n):
                 x2[c] = xt[c] + d2[c]
@@ -371,17 +488,30 @@ def track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xo
             finite = np.isfinite(e1) and np.isfinite(e2)
             contracting = (e2 <= mc * e1) or (e1 <= 1e-9 and e2 <= 1e-10)
             ok = finite and e1 <= ptol and contracting and e2 <= ctol
+            floor_only = False
             if finite and not ok and e1 <= ptol and (contracting or e2 <= noise_tol):
                 # a third (chord) update: Newton still contracting towards corrector_tol, or the round-off
                 # floor (an update that does not move away either)
-                _newton_rhs(fj, fjt, hom, x2, p, F, Js, rhs, ws)
+                if use_dd:
+                    _dd_rhs(fres, hom, x2, p1, p0, g, tn, rhs, F, Xd, Pd, Fd, Sd)
+                else:
+                    _newton_rhs(fj, fjt, hom, x2, p, F, Js, rhs, ws)
                 _lin(okn, apply, Jn, An, pivn, rhs, d3)
                 e3 = _norm(d3) / scale
-                if np.isfinite(e3) and ((contracting and e3 <= ctol and e3 <= mc * e2)
-                                        or (e2 <= noise_tol and e3 <= 2.0 * e2 and e3 <= noise_tol)):
+                more = contracting and e3 <= ctol and e3 <= mc * e2
+                if np.isfinite(e3) and (more or (e2 <= noise_tol and e3 <= 2.0 * e2 and e3 <= noise_tol)):
                     ok = True
+                    floor_only = not more
                     for c in range(n):
                         x2[c] += d3[c]
+            if dd_allowed and not use_dd and finite and e1 <= ptol and (floor_only or (not ok and e2 <= noise_tol)):
+                # the predictor was good but Newton stalled (or stopped at the round-off floor): residuals in
+                # double-double from here on, and the same step again
+                use_dd = True
+                nsteps += 1
+                if nsteps >= max_steps:
+                    st = TOO_MANY_STEPS
+                continue
             if ok:  # the Newton factors become those of the new point (for its k1)
                 Jc, Jn = Jn, Jc
                 Ac, An = An, Ac
@@ -419,6 +549,7 @@ def track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xo
         status[i] = st
         steps[i] = nsteps
         Hout[i] = h
+        used_dd[i] = use_dd
 
 
 def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
@@ -440,14 +571,19 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
     else:
         H0 = np.array(np.clip(np.broadcast_to(np.asarray(h0, dtype=float), (N,)), o.min_step, o.max_step), order="C")
     P1, P0, G = homotopy.path_parameters()
+    get = getattr(homotopy, "compiled_residual_dd", None)
+    fres = get() if get is not None else None
     opts = np.array([o.initial_step, o.max_step, o.min_step, o.max_steps, o.predictor_tol, o.corrector_tol,
-                     o.max_contraction, o.max_norm, o.noise_tol, o.step_safety], dtype=float)
+                     o.max_contraction, o.max_norm, o.noise_tol, o.step_safety,
+                     float(fres is not None and o.extended_residual)], dtype=float)
     Xout = np.empty_like(X)
     S = np.empty(N)
     st = np.empty(N, dtype=np.int64)
     steps = np.empty(N, dtype=np.int64)
     Hout = np.empty(N)
+    used = np.zeros(N, dtype=bool)
     if N:
-        track_kernel(fj, fjt, factor, apply, hom, X, P1, P0, G, TA, TB, H0, opts, Xout, S, st, steps, Hout)
+        track_kernel(fj, fjt, factor, apply, no_residual_dd if fres is None else fres, hom, X, P1, P0, G, TA, TB, H0,
+                     opts, Xout, S, st, steps, Hout, used)
     names = np.array([S_RUN, SUCCESS, S_SMALL, S_MANY, S_DIV], dtype=object)
-    return SegmentResult(x=Xout, s=S, t=TA + S * (TB - TA), status=names[st], steps=steps, h=Hout)
+    return SegmentResult(x=Xout, s=S, t=TA + S * (TB - TA), status=names[st], steps=steps, h=Hout, extended=used)

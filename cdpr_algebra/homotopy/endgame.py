@@ -127,7 +127,12 @@ class SolveOptions:
       from the points every other path reached (:func:`_detour_retry`).  Only for a call given every start
       solution of a homotopy whose system at t = te is generic (a parameter homotopy from a generic instance):
       it has exactly as many regular solutions as paths, so once every path holds a distinct regular one there,
-      they are all of them, whichever path holds which (a detour may swap two paths' solutions).
+      they are all of them, whichever path holds which (a detour may swap two paths' solutions);
+    * ``retry_extended`` [False]: :func:`.solve.solve_parameter_homotopy` tracks the paths that failed in double
+      precision once more along the same parameter path with Newton residuals in double-double where double
+      precision stalls (``TrackerOptions.extended_residual``; systems that offer a double-double residual, with the
+      compiled tracker).  Measured on the DGP of seed 000 Test 3: 23 failed paths instead of 47 in 6.6 s instead
+      of 4.1 s; the residuals in double-double from the start (``extended_residual``) leave 6 in 9.9 s.
     """
 
     tracker: TrackerOptions = field(default_factory=TrackerOptions)
@@ -139,18 +144,19 @@ class SolveOptions:
     check_path_jumping: bool = True
     duplicate_tol: float = 1e-8
     detour_retry: bool = False
+    retry_extended: bool = False
 
     def to_dict(self):
         return {"tracker": self.tracker.to_dict(), "endgame": self.endgame.to_dict(), "retry_tight": self.retry_tight,
                 "retry_mpmath": self.retry_mpmath, "mp_dps": self.mp_dps, "max_mpmath_paths": self.max_mpmath_paths,
                 "check_path_jumping": self.check_path_jumping, "duplicate_tol": self.duplicate_tol,
-                "detour_retry": self.detour_retry}
+                "detour_retry": self.detour_retry, "retry_extended": self.retry_extended}
 
 
 # ---------------------------------------------------------------------------------------------
 # refinement
 # ---------------------------------------------------------------------------------------------
-def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13):
+def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13, extended: bool = True):
     """Newton on H(x, t) = 0 for every point. Returns (x, last_update, residual, condition, quadratic).
 
     ``condition`` is the 2-norm condition number of dF/dx with columns scaled by max(1, |x_j|) and rows
@@ -159,10 +165,20 @@ def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13):
     ``quadratic`` is True where Newton reached max(``tol``, 1e-15 cond) (1 + |x|): full double precision
     for that condition number, which on a singular point (linear convergence) does not happen
     within ``max_iter`` iterations.
+
+    With ``extended`` and a homotopy that offers a double-double residual (:func:`.compiled.residual_dd`), the
+    residuals are evaluated in double-double (the Jacobians and updates stay in double): Newton then converges to
+    full double precision on points whose condition number is up to ~1 / eps, not ~1 / (eps tol).
     """
     x = np.array(x, dtype=complex, copy=True)
     N = len(x)
     tt = np.full(N, t, dtype=complex)
+    residual = None
+    if extended and getattr(homotopy, "compiled_residual_dd", None) is not None:
+        from .compiled import available, residual_dd
+
+        if available():
+            residual = residual_dd
     upd = np.full(N, np.inf)
     active = np.arange(N)
     prev = np.full(N, np.inf)
@@ -170,6 +186,9 @@ def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13):
         if not active.size:
             break
         H, Hx = homotopy.evaluate_and_jacobian(x[active], tt[active])
+        if residual is not None:
+            Hd = residual(homotopy, x[active], tt[active])
+            H = H if Hd is None else Hd
         d = _solve(Hx, -H)
         e = _norm(d) / (1 + _norm(x[active]))
         good = np.isfinite(e)
@@ -180,6 +199,9 @@ def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13):
         prev[active] = np.where(take, e, prev[active])
         active = active[take & (e > tol)]
     H, Hx = homotopy.evaluate_and_jacobian(x, tt)
+    if residual is not None:
+        Hd = residual(homotopy, x, tt)
+        H = H if Hd is None else Hd
     res = np.max(np.abs(H), axis=1) / (1 + np.max(np.abs(x), axis=1))
     with np.errstate(all="ignore"):
         try:

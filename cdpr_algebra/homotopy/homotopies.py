@@ -113,6 +113,11 @@ class ParameterHomotopy:
         get = getattr(self.system, "compiled_kernels", None)
         return get() if get is not None and compiled.available() else None
 
+    def compiled_residual_dd(self):
+        """The system's residual in double-double for the compiled tracker's extended-precision Newton, or None."""
+        get = getattr(self.system, "compiled_residual_dd", None)
+        return get() if get is not None else None
+
     def path_parameters(self):
         """(p1, p0, gamma) as arrays of one row for :func:`.compiled.track_kernel` (gamma 1: straight segment)."""
         g = 1.0 if self.gamma is None else self.gamma

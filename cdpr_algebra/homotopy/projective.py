@@ -65,6 +65,11 @@ class HomogenizedQuadratic:
         factor, apply = (dense_factor, dense_apply) if chart is None else chart()
         return base[0], base[1], factor, apply, True
 
+    def compiled_residual_dd(self):
+        """The system's double-double residual: the compiled tracker homogenizes it on the chart itself."""
+        get = getattr(self.system, "compiled_residual_dd", None)
+        return get() if get is not None else None
+
     @property
     def kernel_constants(self) -> np.ndarray:
         """Appended to the parameters given to the compiled kernels: the chart."""

@@ -270,3 +270,4 @@ class SegmentResult:
     status: np.ndarray  # (N,) object: SUCCESS or a failure code
     steps: np.ndarray  # (N,) int
     h: np.ndarray  # (N,) last step (fraction of the segment)
+    extended: np.ndarray | None = None  # (N,) bool: Newton residuals in double-double (compiled tracker) or None

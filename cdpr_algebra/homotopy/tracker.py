@@ -51,7 +51,10 @@ class TrackerOptions:
     * ``max_norm`` [1e10]: |x| beyond this is ``diverged``;
     * ``noise_tol`` [1e-6]: a step whose Newton updates stagnate (third update <= 2 x second) below this
       is accepted as limited by round-off (ill-conditioned stretch of a path);
-    * ``step_safety`` [0.8]: safety factor of the step-size rule (step 4 of the module doc).
+    * ``step_safety`` [0.8]: safety factor of the step-size rule (step 4 of the module doc);
+    * ``extended_residual`` [False]: with the compiled tracker and a system that offers a double-double residual
+      (``compiled_residual_dd``), a path whose Newton corrections stall although its predictor was good takes
+      its residuals in double-double from then on (:func:`.compiled.track_kernel`); the numpy tracker has none.
     """
 
     initial_step: float = 0.05
@@ -64,6 +67,7 @@ class TrackerOptions:
     max_norm: float = 1e10
     noise_tol: float = 1e-6
     step_safety: float = 0.8
+    extended_residual: bool = False
 
     def tightened(self, factor: float = 100.0) -> "TrackerOptions":
         """Stricter settings for re-tracking suspicious paths."""
