@@ -2,7 +2,10 @@
 generic sets for m = 4 .. 6 are stored, Test 3 (63 subproblems, target <= 10 s on 2 cores).
 
     python -m benchmarks.bench_dgp [--repeat 3] [--jobs N] [--no-test3] [--test2] [--profile] [--phc] [--phc-test3]
-                                   [--phc-timeout S] [--track-all]
+                                   [--phc-timeout S] [--track-all] [--extended-precision]
+
+``--extended-precision`` runs the DGP with Newton residuals in double-double where double precision stalls
+(``dgp.solve.default_options(extended=True)``; the profile runs keep the defaults).
 
 ``--track-all`` tracks every taut set (``dgp(exclude=False)``), also those the interval filter proves to hold no
 admissible equilibrium (by default they are not tracked; the summary counts them as "excluded").
@@ -40,15 +43,15 @@ from cdpr_algebra.model.robot import load_robot  # noqa: E402
 from timing import machine  # noqa: E402
 
 
-def bench(path, repeat, jobs, exclude=True):
+def bench(path, repeat, jobs, exclude=True, options=None):
     robot = load_robot(path)
     t0 = time.perf_counter()
-    res = dgp(robot, jobs=jobs, exclude=exclude)
+    res = dgp(robot, jobs=jobs, exclude=exclude, options=options)
     first = time.perf_counter() - t0
     times = []
     for _ in range(repeat):
         t0 = time.perf_counter()
-        res = dgp(robot, jobs=jobs, exclude=exclude)
+        res = dgp(robot, jobs=jobs, exclude=exclude, options=options)
         times.append(time.perf_counter() - t0)
     counts = {m: len(res.by_m(m)) for m in range(1, 7)}
     skipped = sum(1 for s in res.subproblems if s.skipped and s.excluded is None)
@@ -208,23 +211,30 @@ def main(argv=None):
     ap.add_argument("--phc-timeout", type=float, default=1800.0)
     ap.add_argument("--profile", action="store_true", help="also one serial run of each test under cProfile: the "
                                                           "top lines, the slowest subproblems, path counters")
+    ap.add_argument("--extended-precision", action="store_true", help="Newton residuals in double-double where double "
+                    "precision stalls (dgp.solve.default_options(extended=True), cdpr dgp --extended-precision)")
     ap.add_argument("--track-all", action="store_true", help="track every taut set (no exclusion by the interval "
                                                              "filter), as before the sixth session")
     args = ap.parse_args(argv)
     ex = not args.track_all
+    opts = None
+    if args.extended_precision:
+        from cdpr_algebra.dgp.solve import default_options
+
+        opts = default_options(extended=True)
     print(machine())
     print(f"stored generic sets: m = {available_m()}")
-    bench(ROOT / "examples" / "seed000_test1.toml", args.repeat, args.jobs, ex)
+    bench(ROOT / "examples" / "seed000_test1.toml", args.repeat, args.jobs, ex, opts)
     if args.profile:
         profile_run(ROOT / "examples" / "seed000_test1.toml", exclude=ex)
     if args.test2:
-        bench(ROOT / "examples" / "seed000_test2.toml", args.repeat, args.jobs, ex)
+        bench(ROOT / "examples" / "seed000_test2.toml", args.repeat, args.jobs, ex, opts)
         if args.profile:
             profile_run(ROOT / "examples" / "seed000_test2.toml", exclude=ex)
     if args.no_test3:
         print("Test 3: not run (--no-test3)")
     elif {4, 5, 6} <= set(available_m()):
-        bench(ROOT / "examples" / "seed000_test3.toml", args.repeat, args.jobs, ex)
+        bench(ROOT / "examples" / "seed000_test3.toml", args.repeat, args.jobs, ex, opts)
         if args.profile:
             profile_run(ROOT / "examples" / "seed000_test3.toml", exclude=ex)
     else:

@@ -90,28 +90,21 @@ def test_generated_residual_against_mpmath(m):
     assert max(abs(Fd[k] - complex(Fm[k])) for k in range(n)) > 1e3 * err
 
 
-def test_chart_residual_is_the_homogenized_system():
-    """The compiled chart residual in double-double (F_h from F at y, -y, 0 and the chart row) equals the double
-    precision homogenized system to its rounding, at a chart point."""
+def test_residual_dd_is_the_homotopy_affine_and_on_a_chart():
+    """:func:`compiled.residual_dd` (the compiled double-double residual: F of the parameter path, and on a chart the
+    homogenized system from F at y, -y, 0 and the chart row) equals the double-precision homotopy to its rounding."""
     m = 3
     rng = np.random.default_rng(7)
-    n1, npar = 13 + m, 7 * m + 6
-    y = rng.normal(size=n1) + 1j * rng.normal(size=n1)
-    c = rng.normal(size=n1) + 1j * rng.normal(size=n1)
-    p1 = np.concatenate([rng.normal(size=npar) + 1j * rng.normal(size=npar), c])
-    p0 = np.concatenate([rng.normal(size=npar) + 0j, c])
-    t, g = 0.3 + 0.0j, 1.0 + 0.0j
-    Xd, Pd, Fd, S = compiled._dd_workspace(n1, len(p1), True)
-    rhs, F = np.zeros(n1, complex), np.zeros(n1, complex)
-    compiled._dd_rhs(taut_residual, True, y, p1, p0, g, t, rhs, F, Xd, Pd, Fd, S)
-    from cdpr_algebra.homotopy.projective import projectivize
-
-    proj, _ = projectivize(fast_family(m), 0)
-    proj.c = c
-    p = t * p1[:npar] + (1 - t) * p0[:npar]
-    Fh = proj.evaluate(y[None], p[None])[0]
-    assert np.allclose(F, Fh, rtol=0, atol=1e-12 * (1 + np.abs(Fh).max()))
-    assert np.array_equal(rhs, -F)
+    npar = 7 * m + 6
+    p1 = rng.normal(size=npar) + 1j * rng.normal(size=npar)
+    p0 = rng.normal(size=npar) + 0j
+    hom = ParameterHomotopy(fast_family(m), p1, p0)
+    for h in (hom, hom.projective()):
+        Y = rng.normal(size=(5, h.n)) + 1j * rng.normal(size=(5, h.n))
+        t = np.array([0.3, 0.7 + 0.2j, 1.0, 0.0, 0.05j])
+        F = compiled.residual_dd(h, Y, t)
+        Fh = h.evaluate(Y, t)
+        assert np.allclose(F, Fh, rtol=0, atol=1e-12 * (1 + np.abs(Fh).max()))
 
 
 def _hard_subproblem():

@@ -278,7 +278,7 @@ def _dd_rhs(fres, hom, x, p1, p0, g, t, rhs, F, Xd, Pd, Fd, S):
         rhs[i] = -F[i]
 
 
-@nb.njit(cache=True, error_model="numpy")
+@nb.njit(nbt.void(_RES, nbt.boolean, _C2, _C2, _C2, _C1, _C1, _C2), cache=True, error_model="numpy")
 def residual_dd_batch(fres, hom, X, P1, P0, G, T, out):
     """Rows of ``out``: F at the rows of X at t = T[i] (the parameter path of :func:`track_kernel`, rows of P1, P0,
     G per point or row 0 for all) evaluated in double-double by :func:`_dd_rhs` and rounded."""
