@@ -271,16 +271,19 @@ def _double_double_text(source: str) -> str:
 
     body = pair_arithmetic_source(source, flags=(), real=(), constant_second=0.0)
     used = [op for op in OPERATIONS if f"{op}(" in body]
+    moves = [op for op in ("c_ld", "r_ld", "c_st1", "c_st2") if f"{op}(" in body]  # the layout's loads and stores
     doc = ('"""The residual F of the DGP equations per taut set in double-double: ``taut_residual`` of\n'
            ":mod:`cdpr_algebra.generated.taut_equations` rewritten by\n"
            ":func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source` over complex double-double numbers (values\n"
            "are (re hi, re lo, im hi, im lo); x (12 + m, 4), p (7 m + 6, 4), F (12 + m, 4); operations of\n"
-           ":mod:`cdpr_algebra.homotopy.double_double`), compiled by numba for the extended-precision Newton residual of\n"
+           ":mod:`cdpr_algebra.homotopy.double_double`, loads and stores of :mod:`cdpr_algebra.intervals.complex_kernels`),\n"
+           "compiled by numba for the extended-precision Newton residual of\n"
            "the compiled tracker (:mod:`cdpr_algebra.homotopy.compiled`).\n"
            '"""\n\n'
            "import numba as nb\n\n"
            "from cdpr_algebra.homotopy.double_double import RESIDUAL_SIG\n"
            f"from cdpr_algebra.homotopy.double_double import {', '.join(sorted(used))}  # noqa: F401\n"
+           f"from cdpr_algebra.intervals.complex_kernels import {', '.join(sorted(moves))}  # noqa: F401\n"
            "\n\n")
     body = body.replace("def taut_residual(", '@nb.njit(RESIDUAL_SIG, cache=True, error_model="numpy", nogil=True)\n'
                         "def taut_residual(", 1)

@@ -3,14 +3,16 @@
 :mod:`cdpr_algebra.generated.taut_equations` rewritten by
 :func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source` over complex double-double numbers (values
 are (re hi, re lo, im hi, im lo); x (12 + m, 4), p (7 m + 6, 4), F (12 + m, 4); operations of
-:mod:`cdpr_algebra.homotopy.double_double`), compiled by numba for the extended-precision Newton residual of
+:mod:`cdpr_algebra.homotopy.double_double`, loads and stores of :mod:`cdpr_algebra.intervals.complex_kernels`),
+compiled by numba for the extended-precision Newton residual of
 the compiled tracker (:mod:`cdpr_algebra.homotopy.compiled`).
 """
 
 import numba as nb
 
 from cdpr_algebra.homotopy.double_double import RESIDUAL_SIG
-from cdpr_algebra.homotopy.double_double import c_ld, c_neg, c_st1, cc_add, cc_mul, cc_sub, r_neg, rc_add  # noqa: F401
+from cdpr_algebra.homotopy.double_double import c_neg, cc_add, cc_mul, cc_sub, r_neg, rc_add  # noqa: F401
+from cdpr_algebra.intervals.complex_kernels import c_ld, c_st1  # noqa: F401
 
 
 @nb.njit(RESIDUAL_SIG, cache=True, error_model="numpy", nogil=True)

@@ -11,9 +11,9 @@ tolerance).  :mod:`.compiled` switches a path to such residuals when double prec
 Representation: a real double-double is a pair (hi, lo) with |lo| <= ulp(hi) / 2 and value hi + lo; a complex one
 the 4-tuple (re hi, re lo, im hi, im lo); arrays of them have a trailing axis of 4.  The operations carry the names
 that :func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source` gives the operations of a rewritten evaluator
-(``cc_mul``: complex times complex, ``rc_add``: real plus complex, ``r2c``, loads ``c_ld`` and stores ``c_st1``,
-``c_st2``; :data:`OPERATIONS`), so the generated double-double residual of a system is the mechanical rewrite of
-its float one.  Products use Dekker's splitting (no fused multiply-add), sums Knuth's two-sum (Dekker 1971; the
+(``cc_mul``: complex times complex, ``rc_add``: real plus complex, ``r2c``; :data:`OPERATIONS`; the loads and
+stores of a rewritten evaluator are those of the interval kernels, whose arrays have the same layout), so the
+generated double-double residual of a system is the mechanical rewrite of its float one.  Products use Dekker's splitting (no fused multiply-add), sums Knuth's two-sum (Dekker 1971; the
 "sloppy" addition of Hida, Li and Bailey's QD library: relative error a few units of 2^-104 barring cancellation
 of the two operands' leading parts).
 """
@@ -181,29 +181,10 @@ def r2c(a):
     return (a[0], a[1], 0.0, 0.0)
 
 
-# loads and stores (arrays with a trailing axis of 4)
-@nb.njit(**_J)
-def c_ld(a, k):
-    return (a[k, 0], a[k, 1], a[k, 2], a[k, 3])
-
-
-@nb.njit(**_J)
-def r_ld(a, k):
-    return (a[k, 0], a[k, 1])
-
-
-@nb.njit(**_J)
-def c_st1(a, k, v):
-    a[k, 0], a[k, 1], a[k, 2], a[k, 3] = v[0], v[1], v[2], v[3]
-
-
-@nb.njit(**_J)
-def c_st2(a, r, c, v):
-    a[r, c, 0], a[r, c, 1], a[r, c, 2], a[r, c, 3] = v[0], v[1], v[2], v[3]
-
-
+# the arithmetic of a rewritten evaluator; its loads and stores (c_ld, r_ld, c_st1, c_st2: tuples from and to arrays
+# with a trailing axis of 4) are those of :mod:`cdpr_algebra.intervals.complex_kernels`, the same layout
 OPERATIONS = ["cc_add", "cc_sub", "cc_mul", "c_neg", "cr_add", "rc_add", "cr_sub", "rc_sub", "cr_mul", "rc_mul",
-              "rr_add", "rr_sub", "rr_mul", "r_neg", "r2c", "c_ld", "r_ld", "c_st1", "c_st2"]
+              "rr_add", "rr_sub", "rr_mul", "r_neg", "r2c"]
 
 _D2 = nbt.float64[:, ::1]
 # (x, p, F) of a rewritten generated residual: x the unknowns, p the parameters, F out (double-double arrays)
