@@ -111,7 +111,7 @@ def test_failed_paths_are_not_compared_and_definite_differences_disagree(test1, 
     rho = np.array([1.0, 10.0, 10.0])
     real = cc_mod._homotopy
 
-    def failing(robot, rho_, cables, seed):
+    def failing(robot, rho_, cables, seed, extended=False):
         sub, sols = real(robot, rho_, cables, seed)
         return _with_failed(sub, 3), sols
 
@@ -120,7 +120,7 @@ def test_failed_paths_are_not_compared_and_definite_differences_disagree(test1, 
     assert c.homotopy == c.interval == 1 and c.agree is None and c.homotopy_failed_paths == 3
     assert "3 failed path(s)" in c.compared
 
-    def dropping(robot, rho_, cables, seed):
+    def dropping(robot, rho_, cables, seed, extended=False):
         sub, sols = real(robot, rho_, cables, seed)
         return sub, sols[1:]
 
@@ -128,7 +128,7 @@ def test_failed_paths_are_not_compared_and_definite_differences_disagree(test1, 
     c = compare_taut_set(test1, rho, (0, 2))
     assert c.homotopy == 0 and c.interval == 1 and c.agree is False and len(c.interval_only) == 1
 
-    def dropping_and_failing(robot, rho_, cables, seed):
+    def dropping_and_failing(robot, rho_, cables, seed, extended=False):
         sub, sols = dropping(robot, rho_, cables, seed)
         return _with_failed(sub, 1), sols
 
@@ -136,7 +136,7 @@ def test_failed_paths_are_not_compared_and_definite_differences_disagree(test1, 
     c = compare_taut_set(test1, rho, (0, 2))
     assert c.agree is None  # the missing solution may be behind the failed path
 
-    def moving(robot, rho_, cables, seed):
+    def moving(robot, rho_, cables, seed, extended=False):
         sub, sols = real(robot, rho_, cables, seed)
         return _with_failed(sub, 1), [replace(s, position=s.position + 1e-3) for s in sols]
 
@@ -160,7 +160,8 @@ def test_cli_exit_status_and_json(monkeypatch, capsys, boundary_case):
     assert "incomplete" in captured.err and "[1, 3]" in captured.err.splitlines()[-1]
 
     real = cc_mod._homotopy
-    monkeypatch.setattr(cc_mod, "_homotopy", lambda robot, rho_, cables, seed: (real(robot, rho_, cables, seed)[0], []))
+    monkeypatch.setattr(cc_mod, "_homotopy",
+                        lambda robot, rho_, cables, seed, extended=False: (real(robot, rho_, cables, seed)[0], []))
     code = main(["crosscheck", ROBOT, "--lengths", "1", "10", "10", "--taut", "1", "3", "--json"])
     out = json.loads(capsys.readouterr().out)
     assert code == 1 and out["agree"] is False and out["subproblems"][0]["agree"] is False

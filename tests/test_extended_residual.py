@@ -186,3 +186,19 @@ def test_cli_extended_precision(capsys):
     out = json.loads(capsys.readouterr().out)
     assert out["options"]["tracker"]["extended_residual"] is True and out["complete"] is True
     assert len(out["solutions"]) == 6
+
+
+def test_crosscheck_compares_what_extended_precision_completes(capsys):
+    """`cdpr crosscheck` on Test 3's taut set {2, 4, 5}: the homotopy's account is incomplete in double precision, so
+    the subproblem is not compared; with --extended-precision it is complete and agrees with the interval solver."""
+    import json
+
+    from cdpr_algebra.cli.main import main
+
+    path = str(EXAMPLES / "seed000_test3.toml")
+    main(["crosscheck", path, "--taut", "2", "4", "5", "--jobs", "1", "--json"])
+    plain = json.loads(capsys.readouterr().out)
+    assert main(["crosscheck", path, "--taut", "2", "4", "5", "--jobs", "1", "--extended-precision", "--json"]) == 0
+    ext = json.loads(capsys.readouterr().out)
+    (p,), (e,) = plain["subproblems"], ext["subproblems"]
+    assert p["agree"] is None and e["agree"] is True

@@ -6,7 +6,7 @@
     cdpr plot ROBOT [--lengths L1 .. Ln] [--out FILE.png|.svg] [--jobs N]                 (plot.py)
     cdpr cc ROBOT --position X Y Z [--angles ..] [--configuration ..] [--ball R] [--uncertainty DA DB DRHO] [--json]
                                                                                           (cc.py)
-    cdpr crosscheck ROBOT [--lengths L1 .. Ln] [--taut C1 .. Cm] [--jobs N] [--json]        (crosscheck.py)
+    cdpr crosscheck ROBOT [--lengths L1 .. Ln] [--taut C1 .. Cm] [--jobs N] [--extended-precision] [--json]  (crosscheck.py)
     cdpr track ROBOT [--lengths L1 .. Ln] (--to L1 .. Ln | --trajectory FILE) [--steps N] [--json] [--plot F]
                                                                                           (track.py)
     cdpr sweep ROBOT --vary NAME=START:STOP:NUM .. --out DIR [--kind ..] [--workers N] [--scheduler A] (sweep.py)

@@ -197,12 +197,13 @@ def _match(robot, taut, hsols, isols, tol=MATCH_TOL):
             tuple(s for k, s in enumerate(isols) if k not in used_i))
 
 
-def _homotopy(robot, rho, cables, seed):
-    from cdpr_algebra.dgp.solve import solve_taut_set
+def _homotopy(robot, rho, cables, seed, extended=False):
+    from cdpr_algebra.dgp.solve import default_options, solve_taut_set
 
     # the comparison needs the solutions only (no certificates), and every set tracked: the interval exclusion
     # test would put the other side's method into the homotopy's answer
-    return solve_taut_set(robot, rho, cables, seed=seed, certify=False, exclude=False)
+    return solve_taut_set(robot, rho, cables, seed=seed, certify=False, exclude=False,
+                          options=default_options(extended=True) if extended else None)
 
 
 def _incompleteness(hsub):
@@ -242,16 +243,18 @@ def _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only, hwhy=N
 
 
 def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed: int = 0,
-                     interval_result=None, homotopy_result=None) -> SubproblemComparison:
+                     interval_result=None, homotopy_result=None, extended: bool = False) -> SubproblemComparison:
     """Both solvers on the 0-based taut set ``cables`` (rho: all n lengths) and their comparison
     (``interval_result``: an :class:`cdpr_algebra.bp.results.IntervalSubproblem` already computed for this set;
     ``homotopy_result``: the pair (DGPSubproblem, its admissible DGPSolutions) of the homotopy DGP already
-    computed for this set at these lengths, e.g. taken from a :func:`cdpr_algebra.dgp.solve.dgp` result)."""
+    computed for this set at these lengths, e.g. taken from a :func:`cdpr_algebra.dgp.solve.dgp` result;
+    ``extended``: the homotopy with Newton residuals in double-double where double precision stalls,
+    :func:`cdpr_algebra.dgp.solve.default_options`)."""
     rho = np.asarray(rho, dtype=float)
     cables = tuple(sorted(cables))
     taut1 = tuple(c + 1 for c in cables)
     t0 = time.perf_counter()
-    hsub, hsols = homotopy_result if homotopy_result is not None else _homotopy(robot, rho, cables, seed)
+    hsub, hsols = homotopy_result if homotopy_result is not None else _homotopy(robot, rho, cables, seed, extended)
     th = time.perf_counter() - t0 if homotopy_result is None else hsub.seconds
     hskip = hsub.skipped
     hcount = len(hsols)
@@ -273,12 +276,13 @@ def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed:
 
 
 def crosscheck(robot, lengths=None, sets=None, max_m: int = 6, options: BPOptions | None = None, seed: int = 0,
-               progress=None, jobs: int | None = 1) -> CrosscheckResult:
+               progress=None, jobs: int | None = 1, extended: bool = False) -> CrosscheckResult:
     """Compare the solvers on every taut set of m = 1 .. min(n, 6, max_m) cables, or on the 0-based ``sets``.
     ``progress(comparison, done, total)`` is called after each subproblem.  ``jobs`` > 1 (None: ``os.cpu_count()``):
     the interval searches run ahead in that many threads (their compiled kernels release the GIL) while the
     homotopy and the comparison run in the calling thread, in subproblem order (the homotopy's certificates change
-    the precision of the ball arithmetic, which is global), so the result does not depend on ``jobs``."""
+    the precision of the ball arithmetic, which is global), so the result does not depend on ``jobs``; ``extended``:
+    see :func:`compare_taut_set`."""
     jobs = os.cpu_count() if jobs is None else max(1, int(jobs))
     rho, every_set = lengths_and_taut_sets(robot, lengths, max_m)
     sets = every_set if sets is None else sets
@@ -287,7 +291,8 @@ def crosscheck(robot, lengths=None, sets=None, max_m: int = 6, options: BPOption
 
         def one(rho, c):
             fut = ahead.get(tuple(c))
-            return compare_taut_set(robot, rho, c, options, seed, interval_result=None if fut is None else fut.result())
+            return compare_taut_set(robot, rho, c, options, seed, interval_result=None if fut is None else fut.result(),
+                                    extended=extended)
 
         rho, out, seconds = solve_each_taut_set(robot, lengths, max_m, sets, one, progress)
     return CrosscheckResult(robot.name, rho, tuple(out), seconds)
