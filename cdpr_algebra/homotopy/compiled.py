@@ -39,7 +39,8 @@ from numba import types as nbt
 
 from .double_double import RESIDUAL_SIG, cc_add, cc_mul, cc_sub, dd_parameters, to_complex, to_dd
 
-__all__ = ["available", "track_kernel", "track_segment_compiled", "residual_dd", "lu_factor_sparse_lead", "lu_apply_sparse_lead",
+__all__ = ["available", "track_kernel", "track_segment_compiled", "residual_dd", "lu_factor_sparse_lead",
+           "lu_apply_sparse_lead",
            "dense_factor", "dense_apply", "solve_with", "homogenized_eval", "homogenized_workspace", "FACTOR_SIG",
            "APPLY_SIG"]
 

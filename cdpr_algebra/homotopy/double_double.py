@@ -13,9 +13,9 @@ the 4-tuple (re hi, re lo, im hi, im lo); arrays of them have a trailing axis of
 that :func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source` gives the operations of a rewritten evaluator
 (``cc_mul``: complex times complex, ``rc_add``: real plus complex, ``r2c``; :data:`OPERATIONS`; the loads and
 stores of a rewritten evaluator are those of the interval kernels, whose arrays have the same layout), so the
-generated double-double residual of a system is the mechanical rewrite of its float one.  Products use Dekker's splitting (no fused multiply-add), sums Knuth's two-sum (Dekker 1971; the
-"sloppy" addition of Hida, Li and Bailey's QD library: relative error a few units of 2^-104 barring cancellation
-of the two operands' leading parts).
+generated double-double residual of a system is the mechanical rewrite of its float one.  Products use Dekker's
+splitting (no fused multiply-add), sums Knuth's two-sum (Dekker 1971; the "sloppy" addition of Hida, Li and
+Bailey's QD library: relative error a few units of 2^-104 barring cancellation of the two operands' leading parts).
 """
 
 from __future__ import annotations
@@ -216,7 +216,8 @@ def dd_parameters(p1, p0, g, t, out):
     a = T if straight else cc_mul(G, T)
     den = cc_add(a, one_minus_t)
     for k in range(out.shape[0]):
-        v = cc_add(cc_mul(a, (p1[k].real, 0.0, p1[k].imag, 0.0)), cc_mul(one_minus_t, (p0[k].real, 0.0, p0[k].imag, 0.0)))
+        v = cc_add(cc_mul(a, (p1[k].real, 0.0, p1[k].imag, 0.0)),
+                   cc_mul(one_minus_t, (p0[k].real, 0.0, p0[k].imag, 0.0)))
         if not straight:
             v = cc_div(v, den)
         out[k, 0], out[k, 1], out[k, 2], out[k, 3] = v[0], v[1], v[2], v[3]
