@@ -197,3 +197,23 @@ def test_cli_plot_bad_input_one_line_exit_2(one_cable, tmp_path, monkeypatch, ca
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and err.startswith("cdpr: error:") and f"'{field}'" in err
     assert not list(tmp_path.glob("*.png"))
+
+
+def test_cli_plot_of_an_incomplete_dgp_exits_3(tmp_path, capsys, monkeypatch):
+    """As `cdpr dgp`: when a subproblem is not proven complete (here paths forced to fail by a step budget of 3), the
+    picture is still written, stderr says which taut sets may miss equilibria, and the exit status is 3."""
+    from dataclasses import replace
+    from pathlib import Path
+
+    import cdpr_algebra.dgp.solve as dgp_mod
+
+    base = dgp_mod.default_options()
+    monkeypatch.setattr(dgp_mod, "default_options", lambda extended=False: replace(
+        base, tracker=replace(base.tracker, max_steps=3)))
+    monkeypatch.setattr(dgp_mod, "PROJECTIVE_RETRIES", 0)
+    robot = Path(__file__).resolve().parents[1] / "examples" / "seed000_test1.toml"
+    out = tmp_path / "eq.png"
+    assert main(["plot", str(robot), "--out", str(out), "--jobs", "1"]) == 3
+    cap = capsys.readouterr()
+    assert out.stat().st_size > 0 and f"wrote {out}" in cap.out
+    assert "incomplete" in cap.err and "[1, 2, 3]" in cap.err

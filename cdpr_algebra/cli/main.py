@@ -3,7 +3,7 @@
     cdpr igp ROBOT --orientation PHI_X PHI_Y PHI_Z [--degrees] [--exact] [--json]        (igp.py)
     cdpr igp ROBOT --position X Y Z [--all] [--json]
     cdpr dgp ROBOT [--lengths L1 .. Ln] [--jobs N] [--extended-precision] [--mpmath-retry] [--settle [--settle-max-boxes N]] [--json] (dgp.py)
-    cdpr plot ROBOT [--lengths L1 .. Ln] [--out FILE.png|.svg] [--jobs N]                 (plot.py)
+    cdpr plot ROBOT [--lengths L1 .. Ln] [--out FILE.png|.svg] [--jobs N] [--extended-precision]  (plot.py)
     cdpr cc ROBOT --position X Y Z [--angles ..] [--configuration ..] [--ball R] [--uncertainty DA DB DRHO] [--json]
                                                                                           (cc.py)
     cdpr crosscheck ROBOT [--lengths L1 .. Ln] [--taut C1 .. Cm] [--jobs N] [--extended-precision] [--json]  (crosscheck.py)

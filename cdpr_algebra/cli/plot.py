@@ -12,7 +12,7 @@ from pathlib import Path
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import dgp_lengths, finite
+from .common import INCOMPLETE, dgp_lengths, finite
 
 SUFFIXES = (".png", ".svg")
 
@@ -25,6 +25,9 @@ def add_parser(subparsers) -> None:
     p.add_argument("--out", default=None, metavar="FILE",
                    help="output file, .png or .svg (default: <robot file stem>_equilibria.png)")
     p.add_argument("--jobs", type=int, default=None, help="parallel threads (default: all cores)")
+    p.add_argument("--extended-precision", action="store_true",
+                   help="the DGP with Newton residuals in double-double where double precision stalls (as cdpr dgp "
+                        "--extended-precision)")
 
 
 def output_path(out: str | None, robot_file: str) -> Path:
@@ -38,7 +41,7 @@ def output_path(out: str | None, robot_file: str) -> Path:
 
 
 def run(args) -> int:
-    from cdpr_algebra.dgp.solve import dgp, dgp_table
+    from cdpr_algebra.dgp.solve import default_options, dgp, dgp_table, incompleteness
     from cdpr_algebra.report.plot import plot_equilibria
     from cdpr_algebra.model.robot import load_robot
 
@@ -52,7 +55,8 @@ def run(args) -> int:
         what = f"skipped ({sub.skipped})" if sub.skipped else f"{sub.admissible} admissible"
         print(f"[{done}/{total}] taut {list(sub.taut)}: {what}, {sub.seconds:.2f} s", file=sys.stderr, flush=True)
 
-    result = dgp(robot, lengths, jobs=args.jobs, progress=progress)
+    options = default_options(extended=True) if args.extended_precision else None
+    result = dgp(robot, lengths, jobs=args.jobs, progress=progress, options=options)
     print(f"{robot.name}: DGP, lengths {', '.join(f'{v:g}' for v in lengths)}")
     print(dgp_table(result, robot.n))
     fig = plot_equilibria(robot, result.solutions)
@@ -61,4 +65,10 @@ def run(args) -> int:
     except OSError as err:
         raise CdprInputError("--out", f"cannot write {str(out)!r}: {err.strerror or err}") from None
     print(f"wrote {out} ({len(result.solutions)} panel(s))")
+    if not result.complete:  # as cdpr dgp: the picture may miss equilibria of these taut sets
+        print(f"cdpr: incomplete: {len(result.incomplete)} subproblem(s) not proven complete, so equilibria may be "
+              f"missing from the picture (exit status 3):", file=sys.stderr)
+        for s in result.incomplete:
+            print(f"  {list(s.taut)}: {incompleteness(s)}", file=sys.stderr)
+        return INCOMPLETE
     return 0
