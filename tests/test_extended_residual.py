@@ -102,7 +102,7 @@ def test_residual_dd_is_the_homotopy_affine_and_on_a_chart():
     for h in (hom, hom.projective()):
         Y = rng.normal(size=(5, h.n)) + 1j * rng.normal(size=(5, h.n))
         t = np.array([0.3, 0.7 + 0.2j, 1.0, 0.0, 0.05j])
-        F = compiled.residual_dd(h, Y, t)
+        F = compiled.residual_dd(h)(Y, t)
         Fh = h.evaluate(Y, t)
         assert np.allclose(F, Fh, rtol=0, atol=1e-12 * (1 + np.abs(Fh).max()))
 

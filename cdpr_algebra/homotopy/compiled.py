@@ -294,23 +294,37 @@ def residual_dd_batch(fres, hom, X, P1, P0, G, T, out):
             out[i, k] = F[k]
 
 
-def residual_dd(homotopy, x, t):
-    """H(x, t) at the rows of x evaluated in double-double and rounded, for a parameter homotopy (or its projective
-    twin) whose system offers a double-double residual and compiled kernels; None otherwise."""
-    get = getattr(homotopy, "compiled_residual_dd", None)
+def _compiled_parts(homotopy):
+    """(fj, fjt, factor, apply, hom, fres) of a homotopy for the compiled tracker: its system's kernels, whether the
+    system is homogenized on a chart, and its double-double residual (None when it offers none); None without
+    compiled kernels."""
     kernels = getattr(homotopy, "compiled_kernels", None)
-    fres = get() if get is not None else None
     kern = kernels() if kernels is not None else None
-    if fres is None or kern is None:
+    if kern is None:
         return None
-    hom = bool(kern[4]) if len(kern) > 4 else False
-    X = np.array(x, dtype=complex, order="C")
-    T = np.array(np.broadcast_to(np.asarray(t, dtype=complex), (len(X),)), order="C")
+    get = getattr(homotopy, "compiled_residual_dd", None)
+    fres = get() if get is not None else None
+    return (*kern[:4], bool(kern[4]) if len(kern) > 4 else False, fres)
+
+
+def residual_dd(homotopy):
+    """``evaluate(x, t)``: H(x, t) at the rows of x evaluated in double-double and rounded, for a parameter homotopy
+    (or its projective twin) whose system offers a double-double residual and compiled kernels; None otherwise."""
+    parts = _compiled_parts(homotopy)
+    if parts is None or parts[5] is None:
+        return None
+    hom, fres = parts[4], parts[5]
     P1, P0, G = homotopy.path_parameters()
-    out = np.empty_like(X)
-    if len(X):
-        residual_dd_batch(fres, hom, X, P1, P0, G, T, out)
-    return out
+
+    def evaluate(x, t):
+        X = np.array(x, dtype=complex, order="C")
+        T = np.array(np.broadcast_to(np.asarray(t, dtype=complex), (len(X),)), order="C")
+        out = np.empty_like(X)
+        if len(X):
+            residual_dd_batch(fres, hom, X, P1, P0, G, T, out)
+        return out
+
+    return evaluate
 
 
 @nb.njit(cache=True, error_model="numpy")
@@ -560,9 +574,7 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
                           TOO_MANY_STEPS as S_MANY, SegmentResult)
 
     o = options
-    kernels = homotopy.compiled_kernels()
-    fj, fjt, factor, apply = kernels[:4]
-    hom = bool(kernels[4]) if len(kernels) > 4 else False
+    fj, fjt, factor, apply, hom, fres = _compiled_parts(homotopy)
     X = np.array(x0, dtype=complex, order="C")  # copies: the kernel needs writable, contiguous arrays
     N, n = X.shape
     TA = np.array(np.broadcast_to(np.asarray(t_a, dtype=complex), (N,)), order="C")
@@ -572,8 +584,6 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
     else:
         H0 = np.array(np.clip(np.broadcast_to(np.asarray(h0, dtype=float), (N,)), o.min_step, o.max_step), order="C")
     P1, P0, G = homotopy.path_parameters()
-    get = getattr(homotopy, "compiled_residual_dd", None)
-    fres = get() if get is not None else None
     opts = np.array([o.initial_step, o.max_step, o.min_step, o.max_steps, o.predictor_tol, o.corrector_tol,
                      o.max_contraction, o.max_norm, o.noise_tol, o.step_safety,
                      float(fres is not None and o.extended_residual)], dtype=float)

@@ -175,10 +175,9 @@ def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13, extended: 
     tt = np.full(N, t, dtype=complex)
     residual = None
     if extended and getattr(homotopy, "compiled_residual_dd", None) is not None:
-        from .compiled import available, residual_dd
+        from .compiled import residual_dd
 
-        if available():
-            residual = residual_dd
+        residual = residual_dd(homotopy)
     upd = np.full(N, np.inf)
     active = np.arange(N)
     prev = np.full(N, np.inf)
@@ -187,8 +186,7 @@ def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13, extended: 
             break
         H, Hx = homotopy.evaluate_and_jacobian(x[active], tt[active])
         if residual is not None:
-            Hd = residual(homotopy, x[active], tt[active])
-            H = H if Hd is None else Hd
+            H = residual(x[active], tt[active])
         d = _solve(Hx, -H)
         e = _norm(d) / (1 + _norm(x[active]))
         good = np.isfinite(e)
@@ -200,8 +198,7 @@ def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13, extended: 
         active = active[take & (e > tol)]
     H, Hx = homotopy.evaluate_and_jacobian(x, tt)
     if residual is not None:
-        Hd = residual(homotopy, x, tt)
-        H = H if Hd is None else Hd
+        H = residual(x, tt)
     res = np.max(np.abs(H), axis=1) / (1 + np.max(np.abs(x), axis=1))
     with np.errstate(all="ignore"):
         try:
