@@ -10,9 +10,22 @@ import numpy as np
 
 from cdpr_algebra.model.errors import CdprInputError
 
-__all__ = ["INCOMPLETE", "Parser", "finite", "dgp_lengths", "as_flags"]
+__all__ = ["INCOMPLETE", "Parser", "finite", "dgp_lengths", "as_flags", "print_incomplete"]
 
 INCOMPLETE = 3  # exit status: a result not proven complete (failed paths, uncertified endpoints), said on stderr
+
+
+def print_incomplete(result, where: str = "there") -> None:
+    """On stderr: the DGP ``result``'s subproblems not proven complete, each with its reason (equilibria may be
+    missing ``where``), before a command returns :data:`INCOMPLETE`."""
+    import sys
+
+    from cdpr_algebra.dgp.solve import incompleteness
+
+    print(f"cdpr: incomplete: {len(result.incomplete)} subproblem(s) not proven complete, so equilibria may be "
+          f"missing {where} (exit status 3):", file=sys.stderr)
+    for s in result.incomplete:
+        print(f"  {list(s.taut)}: {incompleteness(s)}", file=sys.stderr)
 
 
 class Parser(argparse.ArgumentParser):

@@ -9,7 +9,7 @@ import sys
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import INCOMPLETE, dgp_lengths, finite
+from .common import INCOMPLETE, dgp_lengths, finite, print_incomplete
 
 
 def add_parser(subparsers) -> None:
@@ -40,7 +40,7 @@ def add_parser(subparsers) -> None:
 
 
 def run(args) -> int:
-    from cdpr_algebra.dgp.solve import dgp, dgp_table, incompleteness
+    from cdpr_algebra.dgp.solve import dgp, dgp_table
     from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(args.robot)
@@ -92,10 +92,7 @@ def run(args) -> int:
               f"solution counts stay unproven)", file=sys.stderr)
         return 0
     if not result.complete:
-        print(f"cdpr: incomplete: {len(result.incomplete)} subproblem(s) not proven complete, so equilibria may be "
-              f"missing there (exit status 3):", file=sys.stderr)
-        for s in result.incomplete:
-            print(f"  {list(s.taut)}: {incompleteness(s)}", file=sys.stderr)
+        print_incomplete(result)
         if any(s.failed_paths for s in result.incomplete) and not args.extended_precision:
             print("  (--extended-precision follows ill-conditioned paths with Newton residuals in double-double: "
                   "most failed paths end there, in about twice the time)", file=sys.stderr)

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import INCOMPLETE, dgp_lengths, finite
+from .common import INCOMPLETE, dgp_lengths, finite, print_incomplete
 
 SUFFIXES = (".png", ".svg")
 
@@ -41,7 +41,7 @@ def output_path(out: str | None, robot_file: str) -> Path:
 
 
 def run(args) -> int:
-    from cdpr_algebra.dgp.solve import default_options, dgp, dgp_table, incompleteness
+    from cdpr_algebra.dgp.solve import default_options, dgp, dgp_table
     from cdpr_algebra.report.plot import plot_equilibria
     from cdpr_algebra.model.robot import load_robot
 
@@ -66,9 +66,6 @@ def run(args) -> int:
         raise CdprInputError("--out", f"cannot write {str(out)!r}: {err.strerror or err}") from None
     print(f"wrote {out} ({len(result.solutions)} panel(s))")
     if not result.complete:  # as cdpr dgp: the picture may miss equilibria of these taut sets
-        print(f"cdpr: incomplete: {len(result.incomplete)} subproblem(s) not proven complete, so equilibria may be "
-              f"missing from the picture (exit status 3):", file=sys.stderr)
-        for s in result.incomplete:
-            print(f"  {list(s.taut)}: {incompleteness(s)}", file=sys.stderr)
+        print_incomplete(result, "from the picture")
         return INCOMPLETE
     return 0
