@@ -234,6 +234,20 @@ def generate() -> dict[str, str]:
             DD_TARGET: _double_double_text("\n".join(Fo) + "\n")}
 
 
+def _numba_module(doc: str, body: str, sig: str, imports, names) -> str:
+    """A generated module of rewritten evaluators: the header, ``doc``, numba, the signature ``sig`` from the first
+    module of ``imports`` and, from each (module, operations) of ``imports``, the operations ``body`` calls; every
+    function of ``names`` compiled by numba with ``sig`` (cached, without the GIL)."""
+    head = f"import numba as nb\n\nfrom {imports[0][0]} import {sig}\n"
+    for module, ops in imports:
+        used = sorted(op for op in ops if f"{op}(" in body)
+        head += f"from {module} import {', '.join(used)}  # noqa: F401\n"
+    for name in names:
+        body = body.replace(f"def {name}(", f'@nb.njit({sig}, cache=True, error_model="numpy", nogil=True)\n'
+                            f"def {name}(", 1)
+    return HEADER.format(script=Path(__file__).name) + '"""' + doc + '"""\n\n' + head + "\n\n" + body
+
+
 def _interval_text(source: str) -> str:
     """taut_equations rewritten over complex intervals (:func:`cdpr_algebra.intervals.codegen.complex_interval_source`)
     and compiled by numba with the evaluator signature of :func:`cdpr_algebra.intervals.complex_kernels.krawczyk_kernel`."""
@@ -241,53 +255,38 @@ def _interval_text(source: str) -> str:
 
     from cdpr_algebra.intervals.complex_kernels import OPERATIONS
 
-    body = complex_interval_source(source)
-    used = [op for op in OPERATIONS if f"{op}(" in body]
-    doc = ('"""The DGP equations per taut set over rectangular complex intervals: ``taut_equations`` and\n'
+    doc = ("The DGP equations per taut set over rectangular complex intervals: ``taut_equations`` and\n"
            "``taut_residual`` (here with the signature of the former) of :mod:`cdpr_algebra.generated.taut_equations`\n"
            "rewritten by\n"
            ":func:`cdpr_algebra.intervals.codegen.complex_interval_source` (values are (re lo, re hi, im lo, im hi);\n"
            "x (12 + m, 4), p (7 m + 6, 4), F (12 + m, 4), J (12 + m, 12 + m, 4); outward-rounded operations of\n"
            ":mod:`cdpr_algebra.intervals.complex_kernels`), compiled by numba for the compiled Krawczyk test of\n"
-           ":mod:`cdpr_algebra.certificates.equilibria`.\n"
-           '"""\n\n'
-           "import numba as nb\n\n"
-           "from cdpr_algebra.intervals.complex_kernels import EVALUATOR_SIG\n"
-           f"from cdpr_algebra.intervals.complex_kernels import {', '.join(sorted(used))}  # noqa: F401\n"
-           "\n\n")
-    for name in ("taut_equations", "taut_residual"):
-        body = body.replace(f"def {name}(", '@nb.njit(EVALUATOR_SIG, cache=True, error_model="numpy", nogil=True)\n'
-                            f"def {name}(", 1)
-    return HEADER.format(script=Path(__file__).name) + doc + body
+           ":mod:`cdpr_algebra.certificates.equilibria`.\n")
+    return _numba_module(doc, complex_interval_source(source), "EVALUATOR_SIG",
+                         [("cdpr_algebra.intervals.complex_kernels", OPERATIONS)], ("taut_equations", "taut_residual"))
 
 
 def _double_double_text(source: str) -> str:
     """taut_residual rewritten over complex double-double numbers (every array complex: the tracker's parameters
     p(t) are complex; :func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source`, constants (v, 0)), compiled by
-    numba with the residual signature of :mod:`cdpr_algebra.homotopy.double_double`."""
+    numba with the residual signature of :mod:`cdpr_algebra.homotopy.double_double`; its loads and stores are the
+    interval kernels' (the same array layout: their operations that double-double arithmetic does not define)."""
     from cdpr_algebra.intervals.codegen import pair_arithmetic_source
 
     from cdpr_algebra.homotopy.double_double import OPERATIONS
+    from cdpr_algebra.intervals.complex_kernels import OPERATIONS as INTERVAL_OPERATIONS
 
-    body = pair_arithmetic_source(source, flags=(), real=(), constant_second=0.0)
-    used = [op for op in OPERATIONS if f"{op}(" in body]
-    moves = [op for op in ("c_ld", "r_ld", "c_st1", "c_st2") if f"{op}(" in body]  # the layout's loads and stores
-    doc = ('"""The residual F of the DGP equations per taut set in double-double: ``taut_residual`` of\n'
+    doc = ("The residual F of the DGP equations per taut set in double-double: ``taut_residual`` of\n"
            ":mod:`cdpr_algebra.generated.taut_equations` rewritten by\n"
            ":func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source` over complex double-double numbers (values\n"
            "are (re hi, re lo, im hi, im lo); x (12 + m, 4), p (7 m + 6, 4), F (12 + m, 4); operations of\n"
            ":mod:`cdpr_algebra.homotopy.double_double`, loads and stores of :mod:`cdpr_algebra.intervals.complex_kernels`),\n"
            "compiled by numba for the extended-precision Newton residual of\n"
-           "the compiled tracker (:mod:`cdpr_algebra.homotopy.compiled`).\n"
-           '"""\n\n'
-           "import numba as nb\n\n"
-           "from cdpr_algebra.homotopy.double_double import RESIDUAL_SIG\n"
-           f"from cdpr_algebra.homotopy.double_double import {', '.join(sorted(used))}  # noqa: F401\n"
-           f"from cdpr_algebra.intervals.complex_kernels import {', '.join(sorted(moves))}  # noqa: F401\n"
-           "\n\n")
-    body = body.replace("def taut_residual(", '@nb.njit(RESIDUAL_SIG, cache=True, error_model="numpy", nogil=True)\n'
-                        "def taut_residual(", 1)
-    return HEADER.format(script=Path(__file__).name) + doc + body
+           "the compiled tracker (:mod:`cdpr_algebra.homotopy.compiled`).\n")
+    moves = [op for op in INTERVAL_OPERATIONS if op not in OPERATIONS]
+    return _numba_module(doc, pair_arithmetic_source(source, flags=(), real=(), constant_second=0.0), "RESIDUAL_SIG",
+                         [("cdpr_algebra.homotopy.double_double", OPERATIONS),
+                          ("cdpr_algebra.intervals.complex_kernels", moves)], ("taut_residual",))
 
 
 if __name__ == "__main__":
