@@ -127,12 +127,7 @@ class SolveOptions:
       from the points every other path reached (:func:`_detour_retry`).  Only for a call given every start
       solution of a homotopy whose system at t = te is generic (a parameter homotopy from a generic instance):
       it has exactly as many regular solutions as paths, so once every path holds a distinct regular one there,
-      they are all of them, whichever path holds which (a detour may swap two paths' solutions);
-    * ``retry_extended`` [False]: :func:`.solve.solve_parameter_homotopy` tracks the paths that failed in double
-      precision once more along the same parameter path with Newton residuals in double-double where double
-      precision stalls (``TrackerOptions.extended_residual``; systems that offer a double-double residual, with the
-      compiled tracker).  Measured on the DGP of seed 000 Test 3: 23 failed paths instead of 47 in 6.6 s instead
-      of 4.1 s; the residuals in double-double from the start (``extended_residual``) leave 6 in 9.9 s.
+      they are all of them, whichever path holds which (a detour may swap two paths' solutions).
     """
 
     tracker: TrackerOptions = field(default_factory=TrackerOptions)
@@ -144,13 +139,12 @@ class SolveOptions:
     check_path_jumping: bool = True
     duplicate_tol: float = 1e-8
     detour_retry: bool = False
-    retry_extended: bool = False
 
     def to_dict(self):
         return {"tracker": self.tracker.to_dict(), "endgame": self.endgame.to_dict(), "retry_tight": self.retry_tight,
                 "retry_mpmath": self.retry_mpmath, "mp_dps": self.mp_dps, "max_mpmath_paths": self.max_mpmath_paths,
                 "check_path_jumping": self.check_path_jumping, "duplicate_tol": self.duplicate_tol,
-                "detour_retry": self.detour_retry, "retry_extended": self.retry_extended}
+                "detour_retry": self.detour_retry}
 
 
 # ---------------------------------------------------------------------------------------------

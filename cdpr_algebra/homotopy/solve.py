@@ -182,21 +182,6 @@ def solve_parameter_homotopy(system: PolynomialSystem, start_parameters, start_s
     first = options if len(homs) == 1 else replace(options, detour_retry=False)
     options = replace(options, detour_retry=False)
     paths = _track_segments(system, homs, X, first, seed)
-    if options.retry_extended and not options.tracker.extended_residual and getattr(homs[0], "compiled_residual_dd", None) \
-            and homs[0].compiled_residual_dd() is not None:
-        # the paths still failed, along the same parameter path with Newton residuals in double-double where double
-        # precision stalls (ill-conditioned stretches: large complex solutions, near the singular sets at infinity)
-        redo = [i for i, p in enumerate(paths) if p.status in FAILURES]
-        if redo:
-            ext = replace(options, tracker=replace(options.tracker, extended_residual=True))
-            again = _track_segments(system, homs, X[redo], ext, seed)
-            for i, q in zip(redo, again):
-                if q.status in FAILURES:
-                    continue
-                others = np.array([paths[j].endpoint for j in range(len(paths)) if j != i and paths[j].status == SUCCESS])
-                if q.status == SUCCESS and coincides_with_any(others, q.endpoint, options.duplicate_tol):
-                    continue
-                paths[i] = type(q)(**{**q.__dict__, "index": i, "retried": "extended"})
     proj = chart = None  # built on the first retry (a system may be slow to homogenize)
     for round_ in range(retries):
         redo = _suspects(paths, options.duplicate_tol,
