@@ -548,7 +548,7 @@ class Model:
             k0_lo[mr], k0_hi[mr] = K0.lo, K0.hi
             hc_lo[mr], hc_hi[mr] = FU.lo, FU.hi
             h0_lo[mr], h0_hi[mr] = F0.lo, F0.hi
-            for j, r in enumerate(mr):
+            for r in mr:
                 act[r, list(rows[r][3])] = False
         kc_lo[~act] = 0.0
         kc_hi[~act] = 0.0
