@@ -5,7 +5,7 @@ generic sets for m = 4 .. 6 are stored, Test 3 (63 subproblems, target <= 10 s o
                                    [--phc-timeout S] [--track-all] [--extended-precision]
 
 ``--extended-precision`` runs the DGP with Newton residuals in double-double where double precision stalls
-(``dgp.solve.default_options(extended=True)``; the profile runs keep the defaults).
+(``dgp.solve.default_options(extended=True)``, in the profile runs too).
 
 ``--track-all`` tracks every taut set (``dgp(exclude=False)``), also those the interval filter proves to hold no
 admissible equilibrium (by default they are not tracked; the summary counts them as "excluded").
@@ -160,10 +160,10 @@ class _PhaseCounter:
         return out
 
 
-def profile_run(path, top: int = 12, exclude: bool = True):
+def profile_run(path, top: int = 12, exclude: bool = True, options=None):
     """One serial run of every subproblem under cProfile (the threads of ``dgp`` hide from it): the profile's top
     lines by own time, the five slowest subproblems, the path counters and the tracker's seconds and steps per
-    phase (:class:`_PhaseCounter`), so a change shows where time went."""
+    phase (:class:`_PhaseCounter`), so a change shows where time went; ``options``: the DGP's (default: its own)."""
     import cProfile
     import io
     import pstats
@@ -173,12 +173,12 @@ def profile_run(path, top: int = 12, exclude: bool = True):
 
     robot = load_robot(path)
     rho, sets = lengths_and_taut_sets(robot)
-    solve_taut_set(robot, rho, sets[-1])  # compile / load outside the profile
+    solve_taut_set(robot, rho, sets[-1], options=options)  # compile / load outside the profile
     prof = cProfile.Profile()
     t0 = time.perf_counter()
     with _PhaseCounter() as phases:
         prof.enable()
-        subs = [solve_taut_set(robot, rho, c, exclude=exclude)[0] for c in sets]
+        subs = [solve_taut_set(robot, rho, c, options=options, exclude=exclude)[0] for c in sets]
         prof.disable()
     wall = time.perf_counter() - t0
     buf = io.StringIO()
@@ -226,17 +226,17 @@ def main(argv=None):
     print(f"stored generic sets: m = {available_m()}")
     bench(ROOT / "examples" / "seed000_test1.toml", args.repeat, args.jobs, ex, opts)
     if args.profile:
-        profile_run(ROOT / "examples" / "seed000_test1.toml", exclude=ex)
+        profile_run(ROOT / "examples" / "seed000_test1.toml", exclude=ex, options=opts)
     if args.test2:
         bench(ROOT / "examples" / "seed000_test2.toml", args.repeat, args.jobs, ex, opts)
         if args.profile:
-            profile_run(ROOT / "examples" / "seed000_test2.toml", exclude=ex)
+            profile_run(ROOT / "examples" / "seed000_test2.toml", exclude=ex, options=opts)
     if args.no_test3:
         print("Test 3: not run (--no-test3)")
     elif {4, 5, 6} <= set(available_m()):
         bench(ROOT / "examples" / "seed000_test3.toml", args.repeat, args.jobs, ex, opts)
         if args.profile:
-            profile_run(ROOT / "examples" / "seed000_test3.toml", exclude=ex)
+            profile_run(ROOT / "examples" / "seed000_test3.toml", exclude=ex, options=opts)
     else:
         print("Test 3: skipped (generic sets for m = 4, 5, 6 not all stored)")
     if args.phc:
