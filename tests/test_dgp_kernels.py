@@ -130,3 +130,43 @@ def test_chart_solve_equals_dense(m):
             assert np.abs(out - ref).max() <= 1e-14 * np.linalg.cond(J) * np.abs(ref).max()
             assert np.abs(J @ out - b).max() <= 1e-12 * np.abs(J).max() * np.abs(out).max()
     assert Fh.compiled_kernels()[2] is chart_factor
+
+
+def test_homogenized_eval_reuses_the_origin_only_for_the_same_parameters():
+    """homogenized_eval keeps F, J (and Ht) at the origin while the parameters (and their derivative) are those of
+    its last call: calls that change p, dp and the kind of evaluation in one workspace give, call by call, exactly
+    what a fresh workspace gives, F and J equal the numpy twin (HomogenizedQuadratic), and a call with the same
+    parameters does take the origin from the workspace (a value planted there shows in its result)."""
+    from cdpr_algebra.homotopy.compiled import homogenized_eval, homogenized_workspace
+    from cdpr_algebra.homotopy.projective import HomogenizedQuadratic
+
+    m = 3
+    fam = fast_family(m)
+    rng = np.random.default_rng(7)
+    n1 = fam.n + 1
+    c = rng.normal(size=n1) + 1j * rng.normal(size=n1)
+    Fh = HomogenizedQuadratic(fam, c)
+    ps = [rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m) for _ in range(2)]
+    dps = [rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m) for _ in range(2)]
+    y = rng.normal(size=n1) + 1j * rng.normal(size=n1)
+
+    def call(ws, a, b):
+        """b None: F and J only (the Newton evaluation), else also Ht with dp = dps[b]."""
+        F, Ht = np.empty(n1, complex), np.empty(n1, complex)
+        J = np.zeros((n1, n1), complex)
+        pc = np.concatenate([ps[a], c])
+        dpc = pc if b is None else np.concatenate([dps[b], np.zeros(n1)])
+        homogenized_eval(taut_fj, taut_fjt, y, pc, dpc, F, J, F if b is None else Ht, b is not None, *ws)
+        return F, J, None if b is None else Ht
+
+    ws = homogenized_workspace(n1, fam.m + n1, True)
+    for a, b in [(0, 0), (0, None), (0, 0), (0, 1), (1, None), (0, 0), (0, 0), (0, None)]:
+        got = call(ws, a, b)
+        ref = call(homogenized_workspace(n1, fam.m + n1, True), a, b)
+        for u, v in zip(got, ref):
+            assert (u is None and v is None) or np.array_equal(u, v)
+        F0, J0 = Fh.evaluate_and_jacobian(y[None], ps[a])
+        assert np.abs(got[0] - F0[0]).max() <= 1e-12 * (1 + np.abs(F0).max())
+        assert np.abs(got[1] - J0[0]).max() <= 1e-12 * (1 + np.abs(J0).max())
+    ws[2][5, 0] += 1.0  # F at the origin, as kept: the same parameters again read it
+    assert not np.array_equal(call(ws, 0, None)[0], ref[0])
