@@ -553,7 +553,7 @@ def track_kernel(fj, fjt, factor, apply, fres, hom, X, P1, P0, G, TA, TB, H0, op
                 s = 1.0 if sn >= 1.0 - 1e-15 else sn
             ratio = safety * (ptol / max(e1, 1e-300)) ** 0.2
             if ok:
-                hn = min(ha * min(max(ratio, 1.0), 1.0 if rejected else 2.5), max_step)
+                hn = min(ha * min(ratio, 1.0 if rejected else 2.5), max_step)  # ratio >= safety: e1 <= ptol
             elif finite:
                 hn = ha * min(max(ratio, 0.1), 0.5)
             else:
