@@ -1,0 +1,89 @@
+"""Robustness of the DGP on robots built around a known equilibrium with internal forces K times the load
+(issue 15; the construction of ``tests/large_forces.py``, a nearly singular wrench matrix).
+
+    python -m benchmarks.bench_large_forces [--m 3 4 5 6] [--K 1e1 1e2 1e3 1e4 1e5] [--seeds 300 301 302 303]
+
+For every (m, K, seed) the taut set of all m cables is solved (``dgp.solve.solve_taut_set``, certificates on) and
+counted as
+
+* **found**: the equilibrium is returned (pose within 1e-6 of the robot's size, tensions to 1e-6);
+* **flagged**: not returned, and the subproblem says it is incomplete (failed paths or uncertified endpoints);
+* **missed**: not returned although the subproblem says complete.  For these the equilibrium is confirmed to be
+  a root of the normalized system the homotopy solved: Newton's method in 60 digits from the constructed point
+  (``converges`` when its updates fall below 1e-40 quadratically); a missed root is a broken promise.
+
+Prints the counts, each missed case with its outcomes, and the seconds.  Robot-independent figures, not a timing.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+sys.path.insert(0, str(ROOT / "tests"))
+
+
+def _newton_confirms(robot, cables, p, R, tau, dps: int = 60) -> bool:
+    """60-digit Newton on the normalized DGP system of ``cables`` from the constructed equilibrium converges."""
+    import mpmath
+
+    import cdpr_algebra.dgp.solve as S
+    from cdpr_algebra.model.taut_equations import taut_family
+
+    m = len(cables)
+    rho = robot.lengths
+    target, c, L, Rw = S._normalized(robot, rho, cables)
+    Rh = Rw @ R
+    x0 = np.concatenate([Rw @ (p - c) / L, Rh[:, 0], Rh[:, 1], Rh[:, 2], L * tau / (robot.load * rho[list(cables)])])
+    F, J, _ = taut_family(m).mp_functions()
+    with mpmath.workdps(dps):
+        pt = [mpmath.mpc(complex(v)) for v in target]
+        x = mpmath.matrix([mpmath.mpc(complex(v)) for v in x0])
+        for _ in range(40):
+            d = mpmath.lu_solve(J(list(x), pt), -F(list(x), pt))
+            x = x + d
+            if mpmath.norm(d) < mpmath.mpf(10) ** -40:
+                return True
+    return False
+
+
+def main(argv=None):
+    from cdpr_algebra.dgp.solve import solve_taut_set
+    from large_forces import large_force_robot
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--m", type=int, nargs="+", default=[3, 4, 5, 6])
+    ap.add_argument("--K", type=float, nargs="+", default=[1e1, 1e2, 1e3, 1e4, 1e5])
+    ap.add_argument("--seeds", type=int, nargs="+", default=[300, 301, 302, 303])
+    a = ap.parse_args(argv)
+    t0 = time.perf_counter()
+    counts = {"found": 0, "flagged": 0, "missed": 0}
+    missed = []
+    for m in a.m:
+        for K in a.K:
+            for seed in a.seeds:
+                robot, p, R, tau = large_force_robot(m, K, seed + 10 * m)
+                cables = tuple(range(m))
+                sub, sols = solve_taut_set(robot, robot.lengths, cables)
+                found = any(np.max(np.abs(s.position - p)) <= 1e-6 * robot.size and np.max(np.abs(s.rotation - R)) <= 1e-6
+                            and np.allclose(s.tensions, tau, rtol=1e-6) for s in sols)
+                kind = "found" if found else ("flagged" if not sub.complete else "missed")
+                counts[kind] += 1
+                if kind == "missed":
+                    missed.append((m, K, seed, dict(sub.outcomes), _newton_confirms(robot, cables, p, R, tau)))
+    n = sum(counts.values())
+    print(f"{n} robots (m = {a.m}, K = {a.K}, seeds {a.seeds}): {counts['found']} found, {counts['flagged']} flagged "
+          f"incomplete, {counts['missed']} missed while complete; {time.perf_counter() - t0:.1f} s")
+    for m, K, seed, outcomes, root in missed:
+        print(f"  missed: m = {m}, K = {K:g}, seed {seed}: outcomes {outcomes}; the equilibrium is "
+              + ("a root (60-digit Newton converges)" if root else "not confirmed by 60-digit Newton"))
+
+
+if __name__ == "__main__":
+    main()
