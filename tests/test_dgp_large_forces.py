@@ -60,3 +60,17 @@ def test_a_cauchy_mean_that_does_not_solve_the_system_is_not_a_singular_endpoint
     assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
     hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-4 * robot.size]
     assert hits or not sub.complete, sub.outcomes
+
+
+def test_a_path_is_not_decided_at_infinity_from_estimates_that_did_not_converge():
+    """A wrench matrix within 3e-5 of singular, tensions 1e4 times the load: the equilibrium (|lam| ~ 2e4, a regular
+    root: 60-digit Newton converges to it, measured) is one of a near-double pair across infinity.  At the twelve
+    sample radii (t down to ~6e-9) its two paths still circle the pair's branch point and the Cauchy estimates do not
+    settle; the best of them has y0 ~ 0, and the paths were decided at infinity, the subproblem complete without the
+    equilibrium.  Sampled further (EndgameOptions.infinity_samples) they are not decided: the equilibrium is
+    returned or the subproblem is incomplete."""
+    robot, p, R, tau = large_force_robot(6, 1e4, 360)
+    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(6)), certify=True)
+    assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
+    hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-4 * robot.size]
+    assert hits or not sub.complete, sub.outcomes

@@ -86,7 +86,15 @@ class EndgameOptions:
       outcome); Test 3: 80 -> 74 failed, same time;
     * ``infinity_margin`` [10]: with ``projective``, y0* counts as zero when |y0*| <= margin x its accuracy
       (the Cauchy estimate's, at least 1e-14) and as nonzero beyond; ``min_order`` [1 / 32]: the smallest
-      valuation v of y0(t) ~ t^v that shows y0 -> 0 (1 / (2 ``max_winding_number``)).
+      valuation v of y0(t) ~ t^v that shows y0 -> 0 (1 / (2 ``max_winding_number``));
+    * ``infinity_samples`` [12]: in a chart, a path whose ``max_samples`` radii end without two agreeing Cauchy
+      estimates, and whose best estimate has y0 within ``infinity_margin`` of its accuracy (it would be decided at
+      infinity from an estimate that did not converge), is sampled at up to this many further radii (t down to
+      ~4e-16) first.  Measured (twelfth session): robots built around an equilibrium with a wrench matrix within
+      3e-5 of singular (tests/large_forces.py, m = 6, tensions 1e4 and 1e5 times the load) have a regular root with
+      |lam| ~ 2e4 in a near-double pair across infinity; at t ~ 6e-9 its two paths still circle the pair's branch
+      point, y0 falling like t^(1/2), and they were decided at infinity, the subproblem complete and the
+      equilibrium missing; sampled further they are not decided (failed) and the subproblem is incomplete.
     """
 
     endgame_start: float = 0.1
@@ -108,6 +116,7 @@ class EndgameOptions:
     switch_norm: float = 1e8
     infinity_margin: float = 10.0
     min_order: float = 1.0 / 32.0
+    infinity_samples: int = 12
 
     def to_dict(self):
         return asdict(self)
@@ -283,7 +292,12 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
     lognorm = [np.log(np.max(np.abs(x), axis=1) + 1e-300)]
     vals = []
     active = np.arange(N)
-    for k in range(o.max_samples):
+    parked = np.zeros(0, dtype=int)  # out of samples, not to be sampled further (see infinity_samples)
+    for k in range(o.max_samples + (o.infinity_samples if chart else 0)):
+        if k >= o.max_samples:  # only limits that would be decided at infinity from unconverged estimates go on
+            deeper = _would_be_at_infinity(xend[active], acc[active], o)
+            parked = np.concatenate([parked, active[~deeper]])
+            active = active[deeper]
         if not active.size:
             break
         a = active
@@ -351,6 +365,7 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
         wind[a[better]] = c[better]
         active = a[~conv & (status[a] == "")]
     # out of samples: finite if the best estimate is decent and solves H = 0, else the endgame did not converge
+    active = np.concatenate([parked, active])
     decent = np.array([i for i in active if np.isfinite(acc[i]) and acc[i] <= 1e-5], dtype=int)
     solves = np.zeros(len(decent), dtype=bool)
     if decent.size:
@@ -364,6 +379,15 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
         xend[i] = x[i]
     return EndgameResult(x=xend, status=status, winding=wind, accuracy=acc, t=r.astype(complex), steps=steps,
                          xlast=x, xprev=xprev)
+
+
+def _would_be_at_infinity(Y, accuracy, o: EndgameOptions) -> np.ndarray:
+    """Rows Y of chart estimates (with their accuracies) that :func:`decide_in_chart` would put at infinity by the
+    size of y0 alone (decent accuracy, |y0| within ``infinity_margin`` of it)."""
+    acc = np.where(np.isfinite(accuracy), accuracy, np.inf)
+    with np.errstate(all="ignore"):
+        scale = np.max(np.abs(Y), axis=1)
+        return (acc <= 1e-5) & (np.abs(Y[:, 0]) <= o.infinity_margin * np.maximum(acc, 1e-14) * scale)
 
 
 def decide_in_chart(Y, accuracy, ylast=None, yprev=None, o: EndgameOptions = EndgameOptions()):
