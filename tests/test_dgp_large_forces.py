@@ -74,3 +74,17 @@ def test_a_path_is_not_decided_at_infinity_from_estimates_that_did_not_converge(
     assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
     hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-4 * robot.size]
     assert hits or not sub.complete, sub.outcomes
+
+
+@pytest.mark.parametrize("m, seed", [(6, 362), (3, 340)])
+def test_tensions_alone_going_to_infinity_is_undecided(m, seed):
+    """Tensions 1e5 times the load on a nearly singular wrench matrix: the equilibrium (a regular root, confirmed by
+    60-digit Newton) is one of a near-double pair across infinity whose two paths converge, at every radius the
+    endgame reaches, to their average with y0 ~ 0, and were decided at infinity with only the tension multipliers
+    growing.  That needs an exactly singular wrench matrix, which double precision cannot establish: those paths are
+    now endgame_failed and the subproblem incomplete (or the equilibrium returned), never complete without it."""
+    robot, p, R, tau = large_force_robot(m, 1e5, seed)
+    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(m)), certify=True)
+    assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
+    hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-4 * robot.size]
+    assert hits or not sub.complete, sub.outcomes
