@@ -204,7 +204,7 @@ def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13, extended: 
     H, Hx = homotopy.evaluate_and_jacobian(x, tt)
     if residual is not None:
         H = residual(x, tt)
-    res = np.max(np.abs(H), axis=1) / (1 + np.max(np.abs(x), axis=1))
+    res = _relative_residual(H, x)
     with np.errstate(all="ignore"):
         try:
             # scaled condition number: columns by max(1, |x_j|), rows to unit norm, so a regular solution
@@ -274,6 +274,15 @@ def _cauchy_loops(homotopy, x, r, o: EndgameOptions, tr: TrackerOptions):
     return est, wind, ok, steps
 
 
+DECENT_ACCURACY = 1e-5  # a Cauchy estimate at least this accurate (relative) still decides a path out of samples
+
+
+def _relative_residual(H, X) -> np.ndarray:
+    """max |H| / (1 + max |x|) per row: the residual of points X (rows) with values H, relative to their size, as
+    every endpoint reports it."""
+    return np.max(np.abs(H), axis=1) / (1 + np.max(np.abs(X), axis=1))
+
+
 def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions, chart: bool = False) -> EndgameResult:
     """Power-series valuation test for divergence plus Cauchy-integral endgame (see module doc).  With ``chart``
     (x in a projective chart) no path is declared at infinity here: every converged limit is returned as a finite
@@ -340,7 +349,7 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
             # a finite limit must solve H(x, 0) = 0; a stable mean with a large residual is the constant
             # term of a Puiseux series with negative exponents: the path diverges
             Hc = homotopy.evaluate(est[conv], np.zeros(int(conv.sum()), dtype=complex))
-            resid = np.max(np.abs(Hc), axis=1) / (1 + np.max(np.abs(est[conv]), axis=1))
+            resid = _relative_residual(Hc, est[conv])
             ci = np.flatnonzero(conv)
             diverging = ci[~(resid <= o.finite_residual)]
             conv[diverging] = False
@@ -366,12 +375,12 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
         active = a[~conv & (status[a] == "")]
     # out of samples: finite if the best estimate is decent and solves H = 0, else the endgame did not converge
     active = np.concatenate([parked, active])
-    decent = np.array([i for i in active if np.isfinite(acc[i]) and acc[i] <= 1e-5], dtype=int)
+    decent = np.array([i for i in active if np.isfinite(acc[i]) and acc[i] <= DECENT_ACCURACY], dtype=int)
     solves = np.zeros(len(decent), dtype=bool)
     if decent.size:
         with np.errstate(all="ignore"):
             Hd = homotopy.evaluate(xend[decent], np.zeros(decent.size, dtype=complex))
-            resid = np.max(np.abs(Hd), axis=1) / (1 + np.max(np.abs(xend[decent]), axis=1))
+            resid = _relative_residual(Hd, xend[decent])
         solves = resid <= o.finite_residual
     status[decent[solves]] = SINGULAR
     for i in set(active.tolist()) - set(decent[solves].tolist()):
@@ -382,12 +391,9 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
 
 
 def _would_be_at_infinity(Y, accuracy, o: EndgameOptions) -> np.ndarray:
-    """Rows Y of chart estimates (with their accuracies) that :func:`decide_in_chart` would put at infinity by the
-    size of y0 alone (decent accuracy, |y0| within ``infinity_margin`` of it)."""
-    acc = np.where(np.isfinite(accuracy), accuracy, np.inf)
-    with np.errstate(all="ignore"):
-        scale = np.max(np.abs(Y), axis=1)
-        return (acc <= 1e-5) & (np.abs(Y[:, 0]) <= o.infinity_margin * np.maximum(acc, 1e-14) * scale)
+    """Rows Y of chart estimates (with their accuracies) that the out-of-samples rule of :func:`cauchy_endgame` would
+    keep (``DECENT_ACCURACY``) and :func:`decide_in_chart` would then put at infinity by the size of y0 alone."""
+    return (accuracy <= DECENT_ACCURACY) & decide_in_chart(Y, accuracy, o=o)[0]
 
 
 def decide_in_chart(Y, accuracy, ylast=None, yprev=None, o: EndgameOptions = EndgameOptions()):
@@ -694,7 +700,7 @@ def _unsolved_in_affine(homotopy, X, status, eo: EndgameOptions) -> np.ndarray:
         return bad
     with np.errstate(all="ignore"):
         H = homotopy.evaluate(X[idx], np.zeros(idx.size, dtype=complex))
-        res = np.max(np.abs(H), axis=1) / (1 + np.max(np.abs(X[idx]), axis=1))
+        res = _relative_residual(H, X[idx])
     bad[idx] = ~(res <= eo.finite_residual)
     return bad
 
@@ -723,7 +729,7 @@ def _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order=No
     if ok.size:
         H, Hx = homotopy.evaluate_and_jacobian(x[ok], np.zeros(ok.size, dtype=complex))
         with np.errstate(all="ignore"):
-            res[ok] = np.max(np.abs(H), axis=1) / (1 + np.max(np.abs(x[ok]), axis=1))
+            res[ok] = _relative_residual(H, x[ok])
             try:
                 cond[ok] = np.linalg.cond(Hx)
             except np.linalg.LinAlgError:
