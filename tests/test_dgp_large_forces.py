@@ -48,6 +48,16 @@ def test_moderate_internal_forces_are_found():
     assert len(hits) == 1 and np.allclose(hits[0].tensions, tau, rtol=1e-6)
 
 
+def _returned_or_incomplete(m, K, seed):
+    """The taut set of all m cables of large_force_robot(m, K, seed), with certificates: its outcomes add up, and
+    the equilibrium is returned or the subproblem says it is incomplete."""
+    robot, p, R, tau = large_force_robot(m, K, seed)
+    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(m)), certify=True)
+    assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
+    hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-4 * robot.size]
+    assert hits or not sub.complete, sub.outcomes
+
+
 @pytest.mark.parametrize("m, K, seed", [(6, 1e2, 360), (3, 1e5, 333)])
 def test_a_cauchy_mean_that_does_not_solve_the_system_is_not_a_singular_endpoint(m, K, seed):
     """Wrench matrices within ~3e-5 of singular: the equilibrium is a regular root of condition ~1e10 (60-digit
@@ -55,11 +65,7 @@ def test_a_cauchy_mean_that_does_not_solve_the_system_is_not_a_singular_endpoint
     Cauchy mean solved the chart system to 2e-7 but the affine one only to 5e-4 .. 5e-2, and was reported singular,
     the subproblem complete and the equilibrium missing.  Now such a mean is endgame_failed: the equilibrium is
     returned or the subproblem is incomplete, and every singular endpoint solves the system in affine coordinates."""
-    robot, p, R, tau = large_force_robot(m, K, seed)
-    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(m)), certify=True)
-    assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
-    hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-4 * robot.size]
-    assert hits or not sub.complete, sub.outcomes
+    _returned_or_incomplete(m, K, seed)
 
 
 def test_a_path_is_not_decided_at_infinity_from_estimates_that_did_not_converge():
@@ -69,11 +75,7 @@ def test_a_path_is_not_decided_at_infinity_from_estimates_that_did_not_converge(
     settle; the best of them has y0 ~ 0, and the paths were decided at infinity, the subproblem complete without the
     equilibrium.  Sampled further (EndgameOptions.infinity_samples) they are not decided: the equilibrium is
     returned or the subproblem is incomplete."""
-    robot, p, R, tau = large_force_robot(6, 1e4, 360)
-    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(6)), certify=True)
-    assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
-    hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-4 * robot.size]
-    assert hits or not sub.complete, sub.outcomes
+    _returned_or_incomplete(6, 1e4, 360)
 
 
 @pytest.mark.parametrize("m, seed", [(6, 362), (3, 340)])
@@ -83,8 +85,4 @@ def test_tensions_alone_going_to_infinity_is_undecided(m, seed):
     endgame reaches, to their average with y0 ~ 0, and were decided at infinity with only the tension multipliers
     growing.  That needs an exactly singular wrench matrix, which double precision cannot establish: those paths are
     now endgame_failed and the subproblem incomplete (or the equilibrium returned), never complete without it."""
-    robot, p, R, tau = large_force_robot(m, 1e5, seed)
-    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(m)), certify=True)
-    assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
-    hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-4 * robot.size]
-    assert hits or not sub.complete, sub.outcomes
+    _returned_or_incomplete(m, 1e5, seed)
