@@ -20,7 +20,10 @@ at the robot's parameters), next to our time for that subproblem alone (median o
 after ``--phc-timeout`` seconds, default 1800).
 
 The first run of each robot also builds and compiles the families (reported separately as "first run");
-the median is over the following runs.  Peak memory (ru_maxrss of this process: subproblems run in threads) is printed.
+the median is over the following runs, with the CPU time of all threads per wall second over them ("cores busy":
+2.00 = both cores computing the whole time; below that, waits: the GIL, or the last subproblem running alone).
+Peak memory (ru_maxrss of this process: subproblems run in threads) is printed.  Before/after comparisons with an
+earlier revision on the same machine: ``python -m benchmarks.bench_against REV`` (interleaved runs).
 """
 
 from __future__ import annotations
@@ -49,10 +52,12 @@ def bench(path, repeat, jobs, exclude=True, options=None):
     res = dgp(robot, jobs=jobs, exclude=exclude, options=options)
     first = time.perf_counter() - t0
     times = []
+    cpu0 = time.process_time()
     for _ in range(repeat):
         t0 = time.perf_counter()
         res = dgp(robot, jobs=jobs, exclude=exclude, options=options)
         times.append(time.perf_counter() - t0)
+    busy = (time.process_time() - cpu0) / max(sum(times), 1e-9)  # CPU seconds of all threads per wall second
     counts = {m: len(res.by_m(m)) for m in range(1, 7)}
     skipped = sum(1 for s in res.subproblems if s.skipped and s.excluded is None)
     excluded = sum(1 for s in res.subproblems if s.excluded is not None)
@@ -60,7 +65,7 @@ def bench(path, repeat, jobs, exclude=True, options=None):
     paths = sum(s.paths for s in res.subproblems)
     print(f"{robot.name}: first run {first:.2f} s, median {statistics.median(times):.2f} s "
           f"(min {min(times):.2f}, max {max(times):.2f}, {repeat} runs) "
-          f"(jobs={jobs}); {len(res.solutions)} admissible ({', '.join(f'm={m}: {c}' for m, c in counts.items() if c)}), "
+          f"(jobs={jobs}, {busy:.2f} cores busy on average); {len(res.solutions)} admissible ({', '.join(f'm={m}: {c}' for m, c in counts.items() if c)}), "
           f"{len(res.stable)} stable; {len(res.subproblems)} subproblems ({skipped} skipped, {excluded} excluded "
           f"by the interval filter, "
           f"{len(res.incomplete)} incomplete), {paths} paths: {o['regular']} regular, {o['singular']} singular, "
