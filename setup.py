@@ -14,14 +14,24 @@ from setuptools.command.build_py import build_py
 EXAMPLE = os.path.join("examples", "seed000_test1.toml")
 
 
+def warm_environment(build_lib: str, environ) -> dict:
+    """The environment of the warm-up process: the built package first on the path, then whatever pip put there
+    (under build isolation, the build environment with the requirements of pyproject.toml: replacing it left the
+    warm-up without numpy on a fresh machine, so nothing was cached and the first run compiled for ~55 s), and no
+    NUMBA_CACHE_DIR (the caches must land in the built package)."""
+    path = [build_lib] + [p for p in environ.get("PYTHONPATH", "").split(os.pathsep) if p]
+    env = dict(environ, PYTHONPATH=os.pathsep.join(path))
+    env.pop("NUMBA_CACHE_DIR", None)
+    return env
+
+
 class build_py_warm(build_py):
     def run(self):
         super().run()
         if os.environ.get("CDPR_ALGEBRA_NO_WARM") or not os.path.exists(EXAMPLE):
             return
         build_lib = os.path.abspath(self.build_lib)
-        env = dict(os.environ, PYTHONPATH=build_lib)
-        env.pop("NUMBA_CACHE_DIR", None)
+        env = warm_environment(build_lib, os.environ)
         print("cdpr_algebra: compiling the numeric kernels into the build (cdpr warm; CDPR_ALGEBRA_NO_WARM=1 skips)")
         try:
             # run in the build tree: the package imported (and its caches) must be the built one, not the sources
@@ -32,4 +42,5 @@ class build_py_warm(build_py):
             print(f"cdpr_algebra: kernels not precompiled ({err}); they compile on first use")
 
 
-setup(cmdclass={"build_py": build_py_warm})
+if __name__ == "__main__":  # as pip's build backend runs it (setuptools.build_meta); a test imports the helpers
+    setup(cmdclass={"build_py": build_py_warm})

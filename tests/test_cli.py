@@ -64,3 +64,20 @@ def test_warm_solves_and_reports(tmp_path, capsys):
     robot.write_text(text)
     assert main(["warm", str(robot)]) == 2
     assert "lengths" in capsys.readouterr().err
+
+
+def test_warm_environment_keeps_the_build_environment():
+    """setup.py's warm-up sees the built package first and still the path pip gave the build (its isolated
+    environment with numpy and numba): with PYTHONPATH replaced, a fresh machine's install cached nothing."""
+    import importlib.util
+    import os
+
+    spec = importlib.util.spec_from_file_location("cdpr_setup", os.path.join(os.path.dirname(__file__), "..", "setup.py"))
+    setup_py = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(setup_py)  # not __main__: setup() is not called
+    sep = os.pathsep
+    env = setup_py.warm_environment("/build/lib", {"PYTHONPATH": f"/iso/site{sep}/iso/overlay", "NUMBA_CACHE_DIR": "/c",
+                                                   "HOME": "/root"})
+    assert env["PYTHONPATH"].split(sep) == ["/build/lib", "/iso/site", "/iso/overlay"]
+    assert "NUMBA_CACHE_DIR" not in env and env["HOME"] == "/root"
+    assert setup_py.warm_environment("/build/lib", {})["PYTHONPATH"] == "/build/lib"
