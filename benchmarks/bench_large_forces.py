@@ -2,6 +2,7 @@
 (issue 15; the construction of ``tests/large_forces.py``, a nearly singular wrench matrix).
 
     python -m benchmarks.bench_large_forces [--m 3 4 5 6] [--K 1e1 1e2 1e3 1e4 1e5] [--seeds 300 301 302 303]
+                                            [--extended-precision]
 
 For every (m, K, seed) the taut set of all m cables is solved (``dgp.solve.solve_taut_set``, certificates on) and
 counted as
@@ -12,6 +13,7 @@ counted as
   a root of the normalized system the homotopy solved: Newton's method in 60 digits from the constructed point
   (``converges`` when its updates fall below 1e-40 quadratically); a missed root is a broken promise.
 
+``--extended-precision`` solves with ``dgp.solve.default_options(extended=True)`` (``cdpr dgp --extended-precision``).
 Prints the counts, each missed case with its outcomes, and the seconds.  Robot-independent figures, not a timing.
 """
 
@@ -54,14 +56,17 @@ def _newton_confirms(robot, cables, p, R, tau, dps: int = 60) -> bool:
 
 
 def main(argv=None):
-    from cdpr_algebra.dgp.solve import solve_taut_set
+    from cdpr_algebra.dgp.solve import default_options, solve_taut_set
     from large_forces import large_force_robot
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--m", type=int, nargs="+", default=[3, 4, 5, 6])
     ap.add_argument("--K", type=float, nargs="+", default=[1e1, 1e2, 1e3, 1e4, 1e5])
     ap.add_argument("--seeds", type=int, nargs="+", default=[300, 301, 302, 303])
+    ap.add_argument("--extended-precision", action="store_true", help="Newton residuals in double-double where "
+                    "double precision stalls")
     a = ap.parse_args(argv)
+    options = default_options(extended=a.extended_precision)
     t0 = time.perf_counter()
     counts = {"found": 0, "flagged": 0, "missed": 0}
     missed = []
@@ -70,7 +75,7 @@ def main(argv=None):
             for seed in a.seeds:
                 robot, p, R, tau = large_force_robot(m, K, seed + 10 * m)
                 cables = tuple(range(m))
-                sub, sols = solve_taut_set(robot, robot.lengths, cables)
+                sub, sols = solve_taut_set(robot, robot.lengths, cables, options=options)
                 found = any(np.max(np.abs(s.position - p)) <= 1e-6 * robot.size and np.max(np.abs(s.rotation - R)) <= 1e-6
                             and np.allclose(s.tensions, tau, rtol=1e-6) for s in sols)
                 kind = "found" if found else ("flagged" if not sub.complete else "missed")
@@ -78,7 +83,8 @@ def main(argv=None):
                 if kind == "missed":
                     missed.append((m, K, seed, dict(sub.outcomes), _newton_confirms(robot, cables, p, R, tau)))
     n = sum(counts.values())
-    print(f"{n} robots (m = {a.m}, K = {a.K}, seeds {a.seeds}): {counts['found']} found, {counts['flagged']} flagged "
+    mode = ", extended precision" if a.extended_precision else ""
+    print(f"{n} robots (m = {a.m}, K = {a.K}, seeds {a.seeds}{mode}): {counts['found']} found, {counts['flagged']} flagged "
           f"incomplete, {counts['missed']} missed while complete; {time.perf_counter() - t0:.1f} s")
     for m, K, seed, outcomes, root in missed:
         print(f"  missed: m = {m}, K = {K:g}, seed {seed}: outcomes {outcomes}; the equilibrium is "
