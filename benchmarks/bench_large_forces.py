@@ -40,9 +40,9 @@ def _newton_confirms(robot, cables, p, R, tau, dps: int = 60) -> bool:
 
     m = len(cables)
     rho = robot.lengths
-    target, c, L, Rw = S._normalized(robot, rho, cables)
+    target, c, L, Rw, cb = S._normalized(robot, rho, cables)
     Rh = Rw @ R
-    x0 = np.concatenate([Rw @ (p - c) / L, Rh[:, 0], Rh[:, 1], Rh[:, 2], L * tau / (robot.load * rho[list(cables)])])
+    x0 = np.concatenate([Rw @ (p + R @ cb - c) / L, Rh[:, 0], Rh[:, 1], Rh[:, 2], L * tau / (robot.load * rho[list(cables)])])
     F, J, _ = taut_family(m).mp_functions()
     with mpmath.workdps(dps):
         pt = [mpmath.mpc(complex(v)) for v in target]

@@ -86,3 +86,43 @@ def test_tensions_alone_going_to_infinity_is_undecided(m, seed):
     growing.  That needs an exactly singular wrench matrix, which double precision cannot establish: those paths are
     now endgame_failed and the subproblem incomplete (or the equilibrium returned), never complete without it."""
     _returned_or_incomplete(m, 1e5, seed)
+
+
+def test_far_centre_of_mass_is_returned_and_complete():
+    """m = 5, K = 1e5: the construction puts the centre of mass ~1e4 robot sizes from the attachment points.
+    Normalized by robot.size (which includes |b'_i - g'|) every one of the 140 paths failed (thirteenth session);
+    normalized by the cable geometry's own scale (dgp.solve._normalized) all finish and the equilibrium is
+    returned with its tensions."""
+    robot, p, R, tau = large_force_robot(5, 1e5, 380)
+    assert np.linalg.norm(robot.com - robot.platform.mean(axis=0)) > 1e3 * np.ptp(robot.base, axis=0).max()
+    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(5)), certify=False)
+    assert sub.complete and sub.outcomes["regular"] == sub.generic_count == 140
+    hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-9 * np.abs(p).max()
+            and np.max(np.abs(s.rotation - R)) <= 1e-9]
+    assert len(hits) == 1 and np.allclose(hits[0].tensions, tau, rtol=1e-6)
+
+
+def test_the_platform_frame_origin_does_not_matter():
+    """Seed 000 Test 1 with its platform frame moved 1000 robot sizes away (b'_i and g' shifted by d): the same
+    equilibria, cable attachment points B_i and tensions, with the pose's origin moved by -R d."""
+    from cdpr_algebra.dgp.solve import dgp
+    from cdpr_algebra.model.robot import Robot, load_robot
+
+    robot = load_robot("examples/seed000_test1.toml")
+    d = np.array([1.0, -2.0, 0.5]) * 1e3 * robot.size
+    moved = Robot(robot.base, robot.platform + d, robot.com + d, robot.load, robot.load_direction, robot.lengths,
+                  robot.name)
+    a, b = dgp(robot, certify=False), dgp(moved, certify=False)
+    assert len(a.solutions) == len(b.solutions) == 6
+
+    def attachments(sol, r):
+        return sol.position + r.platform @ sol.rotation.T
+
+    for s in a.solutions:  # each equilibrium has its twin (the order, by position, differs)
+        twins = [t for t in b.solutions if t.taut == s.taut and np.allclose(
+            attachments(s, robot), attachments(t, moved), rtol=0, atol=1e-9 * robot.size)]
+        assert len(twins) == 1
+        t = twins[0]
+        assert np.allclose(t.position, s.position - s.rotation @ d, rtol=0, atol=1e-9 * np.abs(d).max())
+        assert np.allclose(s.tensions, t.tensions, rtol=1e-8, atol=1e-9 * robot.load)
+        assert s.hessian == t.hessian

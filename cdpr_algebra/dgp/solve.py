@@ -10,9 +10,10 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   coinciding paths itself) from the stored generic solution set of :func:`cdpr_algebra.model.taut_equations.taut_family`
   (``cdpr_algebra/data/dgp_generic_m{m}.json``, made by ``derivations/solve_generic_dgp.py``) to the robot's
   parameters.  Subproblems whose m has no stored set are reported as skipped.  The robot is first normalized
-  to the scale of the stored sets: base centred at the centroid c of the exit points, world frame turned by
-  Rw so that the load acts along -z, lengths divided by L = ``robot.size``, load Q d replaced by -z; then
-  p = c + L Rw^T p^, R = Rw^T R^, lam = Q lam^ / L, tau_i = lam_i rho_i.
+  to the scale of the stored sets: base centred at the centroid c of the exit points, platform frame moved to
+  the centroid cb of its points, world frame turned by Rw so that the load acts along -z, lengths divided by the
+  cable geometry's scale L (:func:`cable_scale`), load Q d replaced by -z; then R = Rw^T R^,
+  p = c + L Rw^T p^ - R cb, lam = Q lam^ / L, tau_i = lam_i rho_i.
   Tracking uses the compiled tracker (:mod:`.homotopy.compiled` with the numba evaluators and structured linear
   solve of :mod:`cdpr_algebra.dgp.kernels`; numpy evaluators :class:`FastTautSystem` for the endgame checks and retries;
   predictor tolerance 3e-4; endpoints refined with Newton residuals in double-double, :func:`.homotopy.endgame.refine`;
@@ -419,16 +420,28 @@ def prune(robot, rho, cables) -> str | None:
 
 
 def _normalized(robot, rho, cables):
-    """(parameters of the normalized problem, c, L, Rw): world coordinates x' = Rw (x - c) / L with Rw taking the
-    load direction to -z (the direction of the stored generic sets: a straight parameter path from there never
-    passes near a vanishing load), load 1."""
+    """(parameters of the normalized problem, c, L, Rw, cb): world coordinates x' = Rw (x - c) / L with Rw taking
+    the load direction to -z (the direction of the stored generic sets: a straight parameter path from there never
+    passes near a vanishing load), load 1, and the platform frame moved to the centroid cb of the platform points
+    (b'_i - cb, g' - cb: the pose's origin is then at the cables' attachment points wherever the robot file puts it).
+    L (:func:`cable_scale`) is the size of the cable geometry alone: a centre of mass far from the attachment points
+    (a long boom, or robots built with huge internal forces, tests/large_forces.py) does not shrink it.  Measured
+    (thirteenth session, m = 4 and 5, K = 1e5, g' 1e4-1.5e5 sizes away): 0-2 failed paths instead of 138-194 with
+    the robot's size, which includes |b'_i - g'|."""
     c = robot.base.mean(axis=0)
-    L = robot.size
+    cb = robot.platform.mean(axis=0)
+    L = cable_scale(robot)
     Rw = rotation_taking(robot.load_direction, np.array([0.0, 0.0, -1.0]))
     idx = list(cables)
     params = np.concatenate([((robot.base[idx] - c) @ Rw.T / L).ravel(), (rho[idx] / L) ** 2,
-                             (robot.platform[idx] / L).ravel(), robot.com / L, [0.0, 0.0, -1.0]])
-    return params, c, L, Rw
+                             ((robot.platform[idx] - cb) / L).ravel(), (robot.com - cb) / L, [0.0, 0.0, -1.0]])
+    return params, c, L, Rw, cb
+
+
+def cable_scale(robot) -> float:
+    """The largest coordinate extent of the base points or of the platform points (robot.size when both vanish)."""
+    L = max(float(np.ptp(robot.base, axis=0).max()), float(np.ptp(robot.platform, axis=0).max()))
+    return L if L > 0 else robot.size
 
 
 def _slack_ok(robot, rho, cables, p, R) -> bool:
@@ -603,7 +616,7 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
                              f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})",
                              complete=False), [], None
     fam = fast_family(m)
-    target, c, L, Rw = _normalized(robot, rho, cables)
+    target, c, L, Rw, cb = _normalized(robot, rho, cables)
     res, failed = _track(m, target, seed, gamma=False, options=options)
     # another route (gamma trick) when one or two paths failed, and the run with fewer failures is kept (each run is
     # a whole account).  Only a run with no failure completes the subproblem, and a new route seldom gives one: the
@@ -635,8 +648,8 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
         ph, R, lamh = ph[0], R[0], lamh[0]
         if np.max(np.abs(R.T @ R - np.eye(3))) > 1e-6 or np.linalg.det(R) <= 0:
             continue
-        p = c + L * (Rw.T @ ph)
         R = Rw.T @ R
+        p = c + L * (Rw.T @ ph) - R @ cb
         tau_S = robot.load * lamh / L * rho[idx]
         if np.any(tau_S < -tol):
             continue
@@ -659,14 +672,15 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     sub = DGPSubproblem(taut1, len(paths), finite, int(np.sum(real)), len(sols), time.perf_counter() - t0,
                         outcomes=outcomes, failures=failures, complete=False, generic_count=generic)
     regular = np.array([s.x for s in res.solutions if not s.singular]).reshape(-1, fam.n)
-    return sub, sols, _world_coordinates(regular, m, c, L, Rw, robot.load)
+    return sub, sols, _world_coordinates(regular, m, c, L, Rw, cb, robot.load)
 
 
-def _world_coordinates(X, m, c, L, Rw, Q):
+def _world_coordinates(X, m, c, L, Rw, cb, Q):
     """Roots (p^, u^, v^, w^, lam^) of the normalized problem (complex rows) -> (p, u, v, w, lam) of the robot:
-    p = c + L Rw^T p^, columns of R = Rw^T R^, lam = Q lam^ / L (see :func:`_normalized`)."""
-    return np.hstack([c + L * (X[:, 0:3] @ Rw), X[:, 3:6] @ Rw, X[:, 6:9] @ Rw, X[:, 9:12] @ Rw,
-                      Q * X[:, 12:12 + m] / L])
+    columns of R = Rw^T R^, p = c + L Rw^T p^ - R cb, lam = Q lam^ / L (see :func:`_normalized`)."""
+    u, v, w = X[:, 3:6] @ Rw, X[:, 6:9] @ Rw, X[:, 9:12] @ Rw
+    p = c + L * (X[:, 0:3] @ Rw) - (cb[0] * u + cb[1] * v + cb[2] * w)
+    return np.hstack([p, u, v, w, Q * X[:, 12:12 + m] / L])
 
 
 def _with_endpoint_certificates(robot, rho, items) -> list:
