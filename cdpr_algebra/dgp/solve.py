@@ -732,7 +732,8 @@ def _merge(solutions, L):
 
 def collected_solutions(solutions, L) -> tuple:
     """The admissible solutions of several subproblems as a DGP reports them: one per pose (:func:`_merge`, ``L``
-    the robot's size), the most taut cables first, then by taut set and position."""
+    the cable geometry's scale, :func:`cable_scale`: robot.size would grow with a far centre of mass), the most taut
+    cables first, then by taut set and position."""
     sols = _merge(list(solutions), L)
     sols.sort(key=lambda s: (-len(s.taut), s.taut, tuple(np.round(s.position, 9))))
     return tuple(sols)
@@ -787,7 +788,7 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
     # the regular endpoints of the subproblems not certified yet (all of them when serial; the threads above certify
     # their own sets): one batch per m
     subs = tuple(_with_endpoint_certificates(robot, rho, [(c, *results[c][::2]) for c in sets]))
-    sols = collected_solutions([s for c in sets for s in results[c][1]], robot.size)
+    sols = collected_solutions([s for c in sets for s in results[c][1]], cable_scale(robot))
     return DGPResult(sols, subs, time.perf_counter() - t0, seed, options)
 
 
