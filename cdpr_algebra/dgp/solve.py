@@ -643,14 +643,12 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     tol = TENSION_RTOL * robot.load
     sols = []
     idx = list(cables)
-    for x in Xr:
-        ph, R, lamh = decode(x, m)
-        ph, R, lamh = ph[0], R[0], lamh[0]
+    for x in _world_coordinates(Xr, m, c, L, Rw, cb, robot.load):
+        p, R, lam = decode(x, m)
+        p, R, lam = p[0], R[0], lam[0]
         if np.max(np.abs(R.T @ R - np.eye(3))) > 1e-6 or np.linalg.det(R) <= 0:
             continue
-        R = Rw.T @ R
-        p = c + L * (Rw.T @ ph) - R @ cb
-        tau_S = robot.load * lamh / L * rho[idx]
+        tau_S = lam * rho[idx]
         if np.any(tau_S < -tol):
             continue
         if not _slack_ok(robot, rho, cables, p, R):
