@@ -22,7 +22,7 @@ from cdpr_algebra.model.taut_equations import taut_family
 from cdpr_algebra.dgp.one_cable import one_cable_equilibria
 from cdpr_algebra.igp.orientation import igp_orientation
 from cdpr_algebra.igp.position import igp_position
-from cdpr_algebra.intervals.balls import krawczyk_certify, symmetric_inertia, symmetric_inertias
+from cdpr_algebra.intervals.balls import krawczyk_certify, refined_root, symmetric_inertia, symmetric_inertias
 from cdpr_algebra.model.robot import Robot
 from cdpr_algebra.model.stability import stability_classes
 from cdpr_algebra.report.tables import igp_table
@@ -86,6 +86,22 @@ def test_krawczyk_rejects_a_wrong_point_and_a_singular_root():
     # x^2 + 1 = 0 has no real root: the Newton step from x = 1e-3 is huge
     kr = krawczyk_certify(lambda x: [x[0] * x[0] + 1], lambda x: [[2 * x[0]]], [1e-3], 1.0)
     assert not kr.proven
+
+
+def test_newton_steps_in_ball_arithmetic():
+    """refined_root: Newton's method with the residual in ball arithmetic takes the five-digit point of the circle
+    and the line to sqrt(2) in doubles, and finds nothing for x^2 + 1.  krawczyk_certify with ``refine`` still
+    certifies only the given point: it rejects the five-digit point (1e-5 from the zero) and proves the refined
+    one."""
+    x0 = np.array([1.4142, 1.4142])
+    C = np.linalg.inv(np.array(_circle_line_jac(x0), dtype=float))
+    y = refined_root(_circle_line, C, x0, 1.0)
+    assert np.all(np.abs(y - np.sqrt(2)) <= 4e-16)
+    assert refined_root(lambda x: [x[0] * x[0] + 1], [[500.0]], [1e-3], 1.0) is None
+    kr = krawczyk_certify(_circle_line, _circle_line_jac, x0, 1.0, refine=8)
+    assert not kr.proven and "Newton step" in kr.reason and 1e-6 < kr.newton_step < 1e-4
+    kr = krawczyk_certify(_circle_line, _circle_line_jac, y, 1.0, refine=8)
+    assert kr.proven and all(e.overlaps(arb(2).sqrt()) for e in kr.enclosure)
 
 
 def test_symmetric_inertia():

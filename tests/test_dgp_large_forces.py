@@ -92,14 +92,21 @@ def test_far_centre_of_mass_is_returned_and_complete():
     """m = 5, K = 1e5: the construction puts the centre of mass ~1e4 robot sizes from the attachment points.
     Normalized by robot.size (which includes |b'_i - g'|) every one of the 140 paths failed (thirteenth session);
     normalized by the cable geometry's own scale (dgp.solve._normalized) all finish and the equilibrium is
-    returned with its tensions."""
+    returned with its tensions and certified."""
     robot, p, R, tau = large_force_robot(5, 1e5, 380)
     assert np.linalg.norm(robot.com - robot.platform.mean(axis=0)) > 1e3 * np.ptp(robot.base, axis=0).max()
-    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(5)), certify=False)
+    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(5)), certify=True)
     assert sub.complete and sub.outcomes["regular"] == sub.generic_count == 140
     hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-9 * np.abs(p).max()
             and np.max(np.abs(s.rotation - R)) <= 1e-9]
     assert len(hits) == 1 and np.allclose(hits[0].tensions, tau, rtol=1e-6)
+    # its certificate: proven in the cable frame (certificates.equilibria._cable_frame) with box scales from the
+    # root's own magnitudes; in the robot's frames with scales L and Q / L no box was proven (thirteenth session)
+    c = hits[0].certificate
+    assert c.certified and c.tension_signs == ("positive",) * 5
+    assert np.all(c.tension_lower[:5] <= tau * (1 + 1e-6)) and np.all(c.tension_upper[:5] >= tau * (1 - 1e-6))
+    assert np.all(c.position_upper - c.position_lower <= 1e-10 * np.abs(p).max())
+    assert np.all(c.position_lower <= hits[0].position) and np.all(hits[0].position <= c.position_upper)
 
 
 def test_the_platform_frame_origin_does_not_matter():
@@ -126,3 +133,29 @@ def test_the_platform_frame_origin_does_not_matter():
         assert np.allclose(t.position, s.position - s.rotation @ d, rtol=0, atol=1e-9 * np.abs(d).max())
         assert np.allclose(s.tensions, t.tensions, rtol=1e-8, atol=1e-9 * robot.load)
         assert s.hessian == t.hessian
+
+
+def test_an_ill_conditioned_equilibrium_is_polished_and_certified():
+    """m = 6, K = 1e3: the system's condition number is about 1e9, so doubles know the root only to ~1e-8 of its
+    size, and no box of relative width 1e-9 around the constructed (rounded) equilibrium holds a zero: its
+    certificate fails, even at 128 bits.  Newton's method with the residual in 128-bit balls polishes it
+    (polished_taut_root), and the polished root is certified; the DGP reports the polished root, inside its
+    certificate's tolerance, with the constructed tensions to 1e-6."""
+    from cdpr_algebra.certificates.equilibria import certify_taut_root, polished_taut_root
+
+    robot, p, R, tau = large_force_robot(6, 1e3, 391)
+    first = certify_taut_root(robot, None, range(6), p, R, tau)
+    assert not first.exists_unique and "Newton step" in first.reason
+    pp, RR, tt = polished_taut_root(robot, None, range(6), p, R, tau)
+    assert 0 < np.abs(tt - tau).max() <= 1e-6 * tau.max() and np.abs(pp - p).max() <= 1e-6 * robot.cable_scale
+    cert = certify_taut_root(robot, None, range(6), pp, RR, tt)
+    assert cert.certified and cert.tension_signs == ("positive",) * 6
+    assert np.all(cert.tension_lower <= tt) and np.all(tt <= cert.tension_upper)
+    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(6)))
+    hits = [s for s in sols if np.allclose(s.tensions, tau, rtol=1e-6)]
+    assert len(hits) == 1 and hits[0].certified
+    c, s = hits[0].certificate, hits[0]
+    for value, lo, hi in ((s.position, c.position_lower, c.position_upper), (s.tensions, c.tension_lower,
+                                                                              c.tension_upper)):
+        slack = 1e-9 * np.abs(value).max()  # the reported root lies within the box tolerance of the proven zero
+        assert np.all(lo - slack <= value) and np.all(value <= hi + slack)

@@ -20,8 +20,12 @@ Square systems certified (all quadratic, world coordinates of the robot file; :f
   orientation, half-turns (e0 = 0) included, is a regular point of this chart, so no branch is special.
 
 Existence and uniqueness: Krawczyk test with epsilon-inflation (:func:`cdpr_algebra.intervals.balls.krawczyk_certify`) in a box of
-width <= 1e-9 relative to the scale of each unknown (L = robot.size for positions, 1 for rotation entries, Q / L
-for lam).  Over the certified box, in outward-rounded ball arithmetic (python-flint arb):
+width <= 1e-9 relative to the scale of each unknown (L = robot.cable_scale for positions, 1 for rotation entries,
+Q / L for lam; positions and lam at least as large as the root's, :func:`_scales`).  DGP roots are certified with
+the world origin at the base points' centroid and the platform frame at the platform points' centroid
+(:func:`_cable_frame`), tried at 53 bits and then at 128 bits with Newton steps in ball arithmetic; a root that
+doubles cannot locate within the box (condition numbers of 1e9 and more) is polished first
+(:func:`polished_taut_root`) and the DGP reports the polished root.  Over the certified box, in outward-rounded ball arithmetic (python-flint arb):
 
 * tensions tau_i = lam_i rho_i (IGP: rho_i = |B_i - A_i| enclosed too); sign 'positive', 'negative', or
   'boundary' when the enclosure contains 0 (a tension zero within rounding is never reported as positive);
@@ -239,17 +243,39 @@ def _hessian_class(inertia, m) -> tuple[str, str | None]:
     return "proven", "<>"
 
 
-def _robot_balls(robot):
-    """(A_i, b'_i, g') of the robot as exact balls."""
-    return ([[arb(c) for c in a] for a in robot.base.tolist()],
-            [[arb(c) for c in bb] for bb in robot.platform.tolist()], [arb(c) for c in robot.com.tolist()])
+def _robot_balls(robot, frame=None):
+    """(A_i, b'_i, g') of the robot as balls: exact, or in the ``frame`` (c, cb) of :func:`_cable_frame` (A_i - c,
+    b'_i - cb, g' - cb, the differences enclosed)."""
+    c, cb = frame if frame is not None else (np.zeros(3), np.zeros(3))
+
+    def shifted(points, o):
+        return [[arb(float(v)) - arb(float(o[k])) for k, v in enumerate(pt)] for pt in np.atleast_2d(points)]
+
+    return shifted(robot.base, c), shifted(robot.platform, cb), shifted(robot.com, cb)[0]
 
 
-def _consequences(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None) -> Certificate:
+def _cable_frame(robot):
+    """(c, cb): the centroid of the base points and of the platform points.  The DGP's root is certified with the
+    world origin moved to c and the platform frame to cb (an equivalent system: given force balance, moments about c
+    are moments about the world origin minus c x the load).  In the robot's own frames a pose far from the world
+    origin, or attachment points far from the platform frame's origin, multiply the rotation's and tensions'
+    rounding by those distances: a platform 1e4 sizes from its frame's origin (tests/large_forces.py) was not
+    certified at any box width."""
+    return robot.base.mean(axis=0), robot.platform.mean(axis=0)
+
+
+def _consequences(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None, frame=None) -> Certificate:
     """Certificate from the certified enclosures: p (3 balls), R (3 x 3 balls), lam (m balls) of the taut cables.
     ``lengths``: all n lengths (floats) or None (IGP: lengths of the taut cables enclosed from the box);
-    ``L``: robot.size."""
-    return _finish([_enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra)])[0]
+    ``L``: robot.cable_scale; ``frame``: p is the platform-frame origin in the frame (c, cb) of
+    :func:`_cable_frame` (the robot's position c + p - R cb is enclosed for the certificate)."""
+    balls, position = None, None
+    if frame is not None:
+        balls = _robot_balls(robot, frame)
+        c, cb = (list(map(float, v)) for v in frame)
+        position = [arb(c[k]) + p[k] - (R[k][0] * cb[0] + R[k][1] * cb[1] + R[k][2] * cb[2]) for k in range(3)]
+    return _finish([_enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra, balls,
+                                position)])[0]
 
 
 def _finish(parts) -> list:
@@ -260,9 +286,10 @@ def _finish(parts) -> list:
             for k, (fields, _, m) in enumerate(parts)]
 
 
-def _enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None, balls=None):
+def _enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None, balls=None, position=None):
     """The fields of the certificate of :func:`_consequences` but the Hessian's, the bordered matrix K (None
-    without taut cables) and m; ``balls``: :func:`_robot_balls` when already made."""
+    without taut cables) and m; ``balls``: :func:`_robot_balls` when already made (in the frame of p);
+    ``position``: the enclosure of the platform-frame origin reported (default p)."""
     n = robot.n
     A, bp, gp = balls or _robot_balls(robot)
 
@@ -295,7 +322,7 @@ def _enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extr
             reasons.append(f"cable {j + 1} not proven slack (|B - A| - rho in [{s_lo[j]:.3g}, {s_hi[j]:.3g}])")
     m = len(taut)
     K = _bordered_matrix([A[i] for i in taut], [Bs[i] for i in taut], G, list(lam), L, robot.load) if m else None
-    p_lo, p_hi = bounds(p)
+    p_lo, p_hi = bounds(p if position is None else position)
     R_lo, R_hi = bounds(R)
     fields = dict(certified=not reasons, reason="; ".join(reasons) or None, problem=problem, box_width=rel_width * L,
                   position_lower=p_lo, position_upper=p_hi, rotation_lower=R_lo, rotation_upper=R_hi,
@@ -305,19 +332,30 @@ def _enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extr
     return fields, K, m
 
 
-def _scales(robot, m, cols, L):
-    """Scale of each unknown (p, u, v, w, lam): L, 1, Q / L."""
-    full = np.array([L] * 3 + [1.0] * 9 + [robot.load / L] * m)
-    return full[list(cols)]
+def _scales(robot, m, cols, L, x=None):
+    """Scale of each unknown (p, u, v, w, lam) in ``cols``: L, 1, Q / L; with the root's values ``x`` (one per
+    column), positions at least max |p_k| and multipliers at least max |lam_k|: a floating-point root is only known
+    relative to its size (a pose far from the world origin, tensions 1e5 times the load), so a box of width 1e-9
+    L or 1e-9 Q / L around it may hold no zero that floats can locate."""
+    cols = list(cols)
+    s = np.array([L] * 3 + [1.0] * 9 + [robot.load / L] * m)[cols]
+    if x is not None:
+        x = np.abs(np.asarray(x, dtype=float))
+        for group in ([k for k, c in enumerate(cols) if c < _U], [k for k, c in enumerate(cols) if c >= _LAM]):
+            if group:
+                s[group] = np.maximum(s[group], x[group].max())
+    return s
 
 
 # --------------------------------------------------------------------------------------------- DGP
-def _robot_data(robot, taut, num, com_at_origin: bool = False):
+def _robot_data(robot, taut, num, com_at_origin: bool = False, frame=None):
     """(A, b, g, f) of the taut cables with numbers made by ``num`` (arb: exact balls; float).
-    ``com_at_origin``: platform frame moved to G (b_i' - g', g' = 0; the difference is enclosed for arb)."""
-    A = [[num(float(c)) for c in robot.base[i]] for i in taut]
-    g = [num(float(c)) for c in robot.com]
-    b = [[num(float(c)) for c in robot.platform[i]] for i in taut]
+    ``com_at_origin``: platform frame moved to G (b_i' - g', g' = 0; the difference is enclosed for arb);
+    ``frame``: (c, cb) of :func:`_cable_frame`, world origin moved to c and platform frame to cb."""
+    c, cb = frame if frame is not None else (np.zeros(3), np.zeros(3))
+    A = [[num(float(v)) - num(float(c[k])) for k, v in enumerate(robot.base[i])] for i in taut]
+    g = [num(float(v)) - num(float(cb[k])) for k, v in enumerate(robot.com)]
+    b = [[num(float(v)) - num(float(cb[k])) for k, v in enumerate(robot.platform[i])] for i in taut]
     if com_at_origin:
         b = [[bi[k] - g[k] for k in range(3)] for bi in b]
         g = [num(0.0)] * 3
@@ -325,56 +363,115 @@ def _robot_data(robot, taut, num, com_at_origin: bool = False):
     return A, b, g, f
 
 
-def _krawczyk(make_system, x0, scale, box_rtol):
+def _krawczyk(make_system, x0, scale, box_rtol, refine=0):
     """Krawczyk certification of the system built by ``make_system(num) -> system(x, jacobian) -> (F, J)``
-    (``num`` = arb for the rigorous evaluators, float for the approximate inverse and Newton step)."""
+    (``num`` = arb for the rigorous evaluators, float for the approximate inverse and Newton step; ``refine``:
+    see :func:`cdpr_algebra.intervals.balls.krawczyk_certify`)."""
     sa, sf = make_system(arb), make_system(float)
     return krawczyk_certify(lambda x: sa(x, False)[0], lambda x: sa(x, True)[1], x0, scale, box_rtol,
-                            F_float=lambda x: sf(x.tolist(), False)[0], J_float=lambda x: sf(x.tolist(), True)[1])
+                            F_float=lambda x: sf(x.tolist(), False)[0], J_float=lambda x: sf(x.tolist(), True)[1],
+                            refine=refine)
 
 
 def certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol: float = BOX_RTOL) -> Certificate:
     """Certificate of one DGP root with the 0-based taut ``cables`` (m = 1..6), cable ``lengths`` (all n, None:
     the robot's), pose (``position`` of the platform-frame origin, ``rotation``) and the m taut ``tensions``.
     Computed at python-flint's default 53 bits, holding :data:`FLINT` (the working precision is global to the
-    process: a 256-bit ball retry in another thread would otherwise change this certificate's boxes)."""
+    process: a 256-bit ball retry in another thread would otherwise change this certificate's boxes).  A root whose
+    existence is not proven there is tried again at :data:`RETRY_PREC` bits with the Newton step computed in ball
+    arithmetic (``refine`` of :func:`cdpr_algebra.intervals.balls.krawczyk_certify`; the extra field
+    ``precision_bits`` says so): on an ill-conditioned system (large internal forces, condition numbers 1e7-1e10)
+    the residual in doubles is noise.  Either way the given root must lie within the box tolerance of the proven
+    zero; a root that doubles could not locate that well is first polished by :func:`polished_taut_root`."""
     from flint import ctx
 
     with FLINT, ctx.workprec(53):
-        return _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol)
+        cert = _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol)
+    if cert.exists_unique:
+        return cert
+    with FLINT, ctx.workprec(RETRY_PREC):
+        retry = _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol, REFINE_STEPS)
+    if not retry.exists_unique:
+        return cert
+    return replace(retry, extra={**retry.extra, "precision_bits": RETRY_PREC})
 
 
-def _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol):
+RETRY_PREC = 128  # bits of the second attempt of certify_taut_root and of polished_taut_root
+REFINE_STEPS = 8  # Newton steps in ball arithmetic
+POLISH_RTOL = 1e-6  # largest move of polished_taut_root, relative to the scale of each unknown (_scales)
+
+
+def polished_taut_root(robot, lengths, cables, position, rotation, tensions, max_move: float = POLISH_RTOL):
+    """(position, rotation, m tensions) of the root of the DGP system of the 0-based taut ``cables`` near the given
+    one, by Newton's method with the residual in :data:`RETRY_PREC`-bit ball arithmetic in the cable frame
+    (:func:`cdpr_algebra.intervals.balls.refined_root`), rounded to doubles; None when it does not converge or moves
+    by more than ``max_move`` of the scale of an unknown.  Nothing is proven here: certify the result.  Doubles
+    locate a root only to about its condition number times 1e-16 of its size (measured on robots with internal
+    forces 1e3-1e4 times the load: moves of 1e-9 to 1.2e-7), too far for a certificate of width 1e-9."""
+    from flint import ctx
+
+    from cdpr_algebra.intervals.balls import refined_root
+
+    problem = _taut_problem(robot, lengths, cables, position, rotation, tensions)
+    if isinstance(problem, Certificate):
+        return None
+    x0, make_system, scale, frame, rho, taut = problem
+    sf = make_system(float)
+    try:
+        C = np.linalg.inv(np.asarray(sf(x0.tolist(), True)[1], dtype=float))
+    except np.linalg.LinAlgError:
+        return None
+    with FLINT, ctx.workprec(RETRY_PREC):
+        sa = make_system(arb)
+        y = refined_root(lambda x: sa(x, False)[0], C, x0, scale, REFINE_STEPS)
+    if y is None or not np.all(np.abs(y - x0) <= max_move * scale):
+        return None
+    R = y[_U:_LAM].reshape(3, 3).T
+    return y[:3] + frame[0] - R @ frame[1], R, y[_LAM:] * rho[taut]
+
+
+def _taut_problem(robot, lengths, cables, position, rotation, tensions):
+    """(x0, make_system, scale, frame, rho, taut) of the DGP root in the cable frame (:func:`_cable_frame`), or the
+    failed Certificate of a taut set without isolated roots."""
     rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
     taut = [int(c) for c in cables]
     m = len(taut)
-    L = robot.size
     tensions = np.asarray(tensions, dtype=float).ravel()
     if tensions.shape != (m,) or not 1 <= m <= 6:
         raise ValueError(f"expected 1..6 taut cables and one tension per taut cable, got {m} cables and "
                          f"{tensions.shape} tensions")
-    x0 = encode(np.asarray(position, float), np.asarray(rotation, float), tensions / rho[taut])
+    frame = _cable_frame(robot)
+    R0 = np.asarray(rotation, float)
+    x0 = encode(np.asarray(position, float) + R0 @ frame[1] - frame[0], R0, tensions / rho[taut])
     if m >= 2:
         def make_system(num):
-            A, b, g, f = _robot_data(robot, taut, num)
+            A, b, g, f = _robot_data(robot, taut, num, frame=frame)
             rho2 = [num(float(rho[i])) ** 2 for i in taut]
             return lambda x, jac: taut_system(x, A, b, g, f, rho2, jac)
     else:
-        gauge = _one_cable_gauge(robot, taut[0], np.asarray(rotation, float))
+        gauge = _one_cable_gauge(robot, taut[0], R0)
         if gauge is None:
             return _failed("dgp", robot.n, "G coincides with the cable anchor: the equilibria of this taut set form "
                                            "a 3-dof family, no isolated root to certify", None, taut)
 
         def make_system(num):
-            A, b, g, f = _robot_data(robot, taut, num)
+            A, b, g, f = _robot_data(robot, taut, num, frame=frame)
             return _one_cable_system(A, b, g, f, [num(float(rho[taut[0]])) ** 2], *gauge)
-    scale = _scales(robot, m, range(12 + m), L)
-    kr = _krawczyk(make_system, x0, scale, box_rtol)
+    return x0, make_system, _scales(robot, m, range(12 + m), robot.cable_scale, x0), frame, rho, taut
+
+
+def _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol, refine=0):
+    problem = _taut_problem(robot, lengths, cables, position, rotation, tensions)
+    if isinstance(problem, Certificate):
+        return problem
+    x0, make_system, scale, frame, rho, taut = problem
+    kr = _krawczyk(make_system, x0, scale, box_rtol, refine)
     if not kr.proven:
         return _failed("dgp", robot.n, kr.reason, kr, taut)
     X = kr.enclosure
     R = [[X[_U + k], X[_V + k], X[_W + k]] for k in range(3)]
-    return _consequences("dgp", robot, taut, rho, X[0:3], R, X[12:], kr, kr.relative_width(scale), L)
+    return _consequences("dgp", robot, taut, rho, X[0:3], R, X[12:], kr, kr.relative_width(scale),
+                         robot.cable_scale, frame=frame)
 
 
 def _one_cable_gauge(robot, i, R0):
@@ -473,7 +570,7 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
     rigorous = system(f_iv, lambda v: Interval.point(v).sqr())  # rho^2 enclosed
     approximate = system(f_float, lambda v: v ** 2)
 
-    scale = _scales(robot, m, range(12 + m), robot.size)
+    scale = _scales(robot, m, range(12 + m), robot.cable_scale)
     boxes = certify_complex_roots(rigorous, approximate, Z, scale,
                                   kernel=_compiled_krawczyk(robot, rho, rows, f_iv))
     balls = [True] * len(groups) if balls is None else list(balls)
@@ -575,7 +672,7 @@ def certify_igp_orientation(robot, rotation, position, tensions, lengths, box_rt
     (the starting point lam = tau / rho)."""
     R0 = np.asarray(rotation, float)
     m = robot.n
-    L = robot.size
+    L = robot.cable_scale
     cols = [0, 1, 2] + [12 + i for i in range(m)]
     rows = list(range(6, 12))
 
@@ -585,7 +682,7 @@ def certify_igp_orientation(robot, rotation, position, tensions, lengths, box_rt
         return lambda y, jac: _select(*taut_system(list(y[:3]) + Rx + list(y[3:]), A, b, g, f, None, jac), rows, cols)
 
     x0 = np.concatenate([np.asarray(position, float), np.asarray(tensions, float) / np.asarray(lengths, float)])
-    scale = _scales(robot, m, cols, L)
+    scale = _scales(robot, m, cols, L, x0)
     kr = _krawczyk(make_system, x0, scale, box_rtol)
     if not kr.proven:
         return _failed("igp_orientation", robot.n, kr.reason, kr, list(range(m)))
@@ -606,7 +703,7 @@ def certify_igp_positions(robot, com_position, roots, box_rtol: float = BOX_RTOL
     lengths) each.  The robot's balls are made once and the floating-point F and J (for C and the Newton step)
     evaluated for every root at once."""
     m = robot.n
-    L = robot.size
+    L = robot.cable_scale
     n = 12 + m
     rows = list(range(6)) + list(range(6 + m, n))
     cols = list(range(3, n))
@@ -632,9 +729,9 @@ def certify_igp_positions(robot, com_position, roots, box_rtol: float = BOX_RTOL
 
     balls = _robot_balls(robot)
     gp = balls[2]
-    scale = _scales(robot, m, cols, L)
     out, parts, proven = [], [], []
     for j in range(len(roots)):
+        scale = _scales(robot, m, cols, L, Y[j])
         kr = krawczyk_certify(F, J, Y[j], scale, box_rtol, inverse=C[j], residual=F0[j])
         if not kr.proven:
             out.append(_failed("igp_position", robot.n, kr.reason, kr, list(range(m))))

@@ -28,7 +28,7 @@ import numpy as np
 
 from cdpr_algebra.bp.results import BPOptions
 from cdpr_algebra.bp.search import solve_taut_set_interval
-from cdpr_algebra.dgp.solve import DGPResult, cable_scale, collected_solutions, equilibrium_from_pose
+from cdpr_algebra.dgp.solve import DGPResult, collected_solutions, equilibrium_from_pose
 from cdpr_algebra.report.jsonable import jsonable
 
 from .compare import _match
@@ -81,7 +81,7 @@ def settle_incomplete(robot, result: DGPResult, lengths=None, options: BPOptions
             if progress:
                 progress(rec, k + 1, len(todo))
     # the added equilibria join the others by the DGP's own rule (one per pose, same order)
-    sols = collected_solutions(list(result.solutions) + added_solutions, cable_scale(robot))
+    sols = collected_solutions(list(result.solutions) + added_solutions, robot.cable_scale)
     settled = replace(result, solutions=sols, subproblems=tuple(subs[tuple(s.taut)] for s in result.subproblems))
     return settled, tuple(records)
 

@@ -12,7 +12,7 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   parameters.  Subproblems whose m has no stored set are reported as skipped.  The robot is first normalized
   to the scale of the stored sets: base centred at the centroid c of the exit points, platform frame moved to
   the centroid cb of its points, world frame turned by Rw so that the load acts along -z, lengths divided by the
-  cable geometry's scale L (:func:`cable_scale`), load Q d replaced by -z; then R = Rw^T R^,
+  cable geometry's scale L (:attr:`Robot.cable_scale`), load Q d replaced by -z; then R = Rw^T R^,
   p = c + L Rw^T p^ - R cb, lam = Q lam^ / L, tau_i = lam_i rho_i.
   Tracking uses the compiled tracker (:mod:`.homotopy.compiled` with the numba evaluators and structured linear
   solve of :mod:`cdpr_algebra.dgp.kernels`; numpy evaluators :class:`FastTautSystem` for the endgame checks and retries;
@@ -424,24 +424,18 @@ def _normalized(robot, rho, cables):
     the load direction to -z (the direction of the stored generic sets: a straight parameter path from there never
     passes near a vanishing load), load 1, and the platform frame moved to the centroid cb of the platform points
     (b'_i - cb, g' - cb: the pose's origin is then at the cables' attachment points wherever the robot file puts it).
-    L (:func:`cable_scale`) is the size of the cable geometry alone: a centre of mass far from the attachment points
+    L (:attr:`Robot.cable_scale`) is the size of the cable geometry alone: a centre of mass far from the attachment points
     (a long boom, or robots built with huge internal forces, tests/large_forces.py) does not shrink it.  Measured
     (thirteenth session, m = 4 and 5, K = 1e5, g' 1e4-1.5e5 sizes away): 0-2 failed paths instead of 138-194 with
     the robot's size, which includes |b'_i - g'|."""
     c = robot.base.mean(axis=0)
     cb = robot.platform.mean(axis=0)
-    L = cable_scale(robot)
+    L = robot.cable_scale
     Rw = rotation_taking(robot.load_direction, np.array([0.0, 0.0, -1.0]))
     idx = list(cables)
     params = np.concatenate([((robot.base[idx] - c) @ Rw.T / L).ravel(), (rho[idx] / L) ** 2,
                              ((robot.platform[idx] - cb) / L).ravel(), (robot.com - cb) / L, [0.0, 0.0, -1.0]])
     return params, c, L, Rw, cb
-
-
-def cable_scale(robot) -> float:
-    """The largest coordinate extent of the base points or of the platform points (robot.size when both vanish)."""
-    L = max(float(np.ptp(robot.base, axis=0).max()), float(np.ptp(robot.platform, axis=0).max()))
-    return L if L > 0 else robot.size
 
 
 def _slack_ok(robot, rho, cables, p, R) -> bool:
@@ -567,10 +561,24 @@ def _certify_solutions(robot, rho, sols):
     """The admissible solutions with their interval certificates (:func:`cdpr_algebra.certificates.equilibria.certify_taut_root`)."""
     if not sols:
         return sols
-    from cdpr_algebra.certificates.equilibria import certify_taut_root
+    from cdpr_algebra.certificates.equilibria import certify_taut_root, polished_taut_root
 
-    return [s.with_certificate(certify_taut_root(robot, rho, [t - 1 for t in s.taut], s.position, s.rotation,
-                                                 s.tensions[[t - 1 for t in s.taut]])) for s in sols]
+    out = []
+    for s in sols:
+        idx = [t - 1 for t in s.taut]
+        cert = certify_taut_root(robot, rho, idx, s.position, s.rotation, s.tensions[idx])
+        polished = None if cert.exists_unique else polished_taut_root(robot, rho, idx, s.position, s.rotation,
+                                                                      s.tensions[idx])
+        if polished is not None:  # ill-conditioned: doubles did not locate the root within the certificate's box
+            p, R, t = polished
+            c = certify_taut_root(robot, rho, idx, p, R, t)
+            if c.exists_unique:
+                tau = np.zeros(robot.n)
+                tau[idx] = t
+                s, cert = replace(s, position=p, rotation=R, tensions=tau, hessian=_classify(robot, rho, idx, p, R,
+                                                                                             t)), c
+        out.append(s.with_certificate(cert))
+    return out
 
 
 def _solve_and_certify_solutions(robot, rho, cables, seed, certify, options, exclude):
@@ -730,7 +738,7 @@ def _merge(solutions, L):
 
 def collected_solutions(solutions, L) -> tuple:
     """The admissible solutions of several subproblems as a DGP reports them: one per pose (:func:`_merge`, ``L``
-    the cable geometry's scale, :func:`cable_scale`: robot.size would grow with a far centre of mass), the most taut
+    the cable geometry's scale, :attr:`Robot.cable_scale`: robot.size would grow with a far centre of mass), the most taut
     cables first, then by taut set and position."""
     sols = _merge(list(solutions), L)
     sols.sort(key=lambda s: (-len(s.taut), s.taut, tuple(np.round(s.position, 9))))
@@ -786,7 +794,7 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
     # the regular endpoints of the subproblems not certified yet (all of them when serial; the threads above certify
     # their own sets): one batch per m
     subs = tuple(_with_endpoint_certificates(robot, rho, [(c, *results[c][::2]) for c in sets]))
-    sols = collected_solutions([s for c in sets for s in results[c][1]], cable_scale(robot))
+    sols = collected_solutions([s for c in sets for s in results[c][1]], robot.cable_scale)
     return DGPResult(sols, subs, time.perf_counter() - t0, seed, options)
 
 

@@ -168,7 +168,7 @@ def krawczyk_operator(F, J, center, radius, C, newton=None) -> tuple[list, list]
 
 
 def krawczyk_certify(F, J, x0, scale, max_rel_width: float = 1e-9, max_iter: int = 10, F_float=None,
-                     J_float=None, inverse=None, residual=None) -> KrawczykResult:
+                     J_float=None, inverse=None, residual=None, refine: int = 0) -> KrawczykResult:
     """Prove that a box of width <= ``max_rel_width`` * ``scale`` (per component) near the floating-point root
     ``x0`` contains exactly one zero of F.
 
@@ -181,6 +181,9 @@ def krawczyk_certify(F, J, x0, scale, max_rel_width: float = 1e-9, max_iter: int
     around y: X = y +/- r with r from |C F(y)|, tested with :func:`krawczyk_operator`, r enlarged from K(X) until
     K(X) lies in the interior of X or the width limit is passed.  The reported root must be within the width
     limit of the certified box (a root off by more is not certified: no box that tight contains it and a zero).
+    ``refine`` > 0: y from up to ``refine`` Newton steps in ball arithmetic at the working precision instead
+    (:func:`refined_root`; a float Newton step on an ill-conditioned system is noise of about its condition number
+    times 1e-16), and x0 must lie within the width limit of y.
     """
     x0 = np.asarray(x0, dtype=float).ravel()
     n = len(x0)
@@ -206,11 +209,15 @@ def krawczyk_certify(F, J, x0, scale, max_rel_width: float = 1e-9, max_iter: int
         residual = F_float(x0) if F_float else mids(F(box(x0)))
     step = C @ np.asarray(residual, dtype=float)
     rel_step = float(np.max(np.abs(step) / s))
+    Cm = arb_mat(C.tolist())
+    y = refined_root(F, Cm, x0, s, refine) if refine else None
+    if y is not None:
+        rel_step = float(np.max(np.abs(y - x0) / s))
     if not rel_step <= 0.5 * max_rel_width:
         return fail(f"the Newton step from the root is {rel_step:.1e} (relative to the unknowns' scale), more than "
                     f"the box tolerance {max_rel_width:.0e}: no solution proven that close to the root", 0, rel_step)
-    y = x0 - step
-    Cm = arb_mat(C.tolist())
+    if y is None:
+        y = x0 - step
     yb = box(y)
     z = Cm * column(F(yb))
     newton = column(yb) - z
@@ -230,6 +237,27 @@ def krawczyk_certify(F, J, x0, scale, max_rel_width: float = 1e-9, max_iter: int
         dev = np.array([upper(abs(Ki - yi)) if Ki.is_finite() else np.inf for Ki, yi in zip(K, y.tolist())])
         r = np.maximum(2 * r, 1.5 * dev)
     return fail(f"Krawczyk test not satisfied after {max_iter} inflations", max_iter, rel_step, y, X)
+
+
+def refined_root(F, C, x0, scale, steps: int = 8):
+    """Newton's method x <- x - C F(x) from ``x0`` (C: an approximate inverse of the Jacobian, doubles or arb_mat)
+    with F in ball arithmetic at the working precision (midpoints only: nothing is proven here), at most
+    ``steps`` steps; the root rounded to doubles, or None when the steps do not fall below 4 EPS of ``scale`` (the
+    size of each unknown)."""
+    Cm = C if isinstance(C, arb_mat) else arb_mat(np.asarray(C, dtype=float).tolist())
+    x0 = np.asarray(x0, dtype=float).ravel()
+    s = _per_component(scale, len(x0))
+    x = [arb(v) for v in x0.tolist()]
+    for _ in range(steps):
+        d = (Cm * column(F(x))).entries()
+        x = [xi - di.mid() for xi, di in zip(x, d)]
+        x = [xi.mid() for xi in x]
+        dm = np.array([abs(float(di.mid())) for di in d])
+        if not np.all(np.isfinite(dm)):
+            return None
+        if np.all(dm <= 4 * EPS * s):
+            return np.array([float(xi) for xi in x])
+    return None
 
 
 # ------------------------------------------------------------------------------ symmetric inertia

@@ -129,6 +129,15 @@ class Robot:
         points relative to G, or the largest |b'_i - g'| if larger (>= 1e-300)."""
         return self._size
 
+    @property
+    def cable_scale(self) -> float:
+        """The length scale of the cable geometry alone: the largest coordinate extent of the base points or of the
+        platform points (:attr:`size` when both vanish).  Unlike :attr:`size` it does not grow with a centre of
+        mass far from the attachment points (a long boom, a robot built with huge internal forces), so tolerances
+        and normalizations of poses and tensions use it."""
+        scale = max(float(np.ptp(self.base, axis=0).max()), float(np.ptp(self.platform, axis=0).max()))
+        return scale if scale > 0 else self._size
+
     def with_lengths(self, lengths) -> "Robot":
         return Robot(self.base, self.platform, self.com, self.load, self.load_direction, lengths, self.name)
 
