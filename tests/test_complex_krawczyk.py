@@ -153,9 +153,11 @@ def test_dgp_roots_proven_in_balls_are_enclosed_to_double_precision():
     assert len(bad) >= 10
     boxes = type(double)(double.proven[bad], double.lo[bad], double.hi[bad], double.real[bad], double.nonreal[bad],
                          double.center[bad], tuple(double.reason[k] for k in bad))
-    scale = np.broadcast_to(EQ._scales(robot, len(cables), range(12 + len(cables)), robot.size), (Z.shape[1],))
-    out = EQ._retry_in_balls(robot, rho, np.repeat(np.array(cables)[None], len(bad), axis=0), Z[bad], scale,
-                             boxes, np.ones(len(bad), bool))
+    scale = np.broadcast_to(EQ._scales(robot, len(cables), range(12 + len(cables)), robot.cable_scale),
+                            (Z.shape[1],))
+    frame = EQ._cable_frame(robot)  # certify_endpoints works in the cable frame
+    out = EQ._retry_in_balls(robot, rho, np.repeat(np.array(cables)[None], len(bad), axis=0),
+                             EQ._in_frame(Z[bad], frame), scale, boxes, np.ones(len(bad), bool), frame)
     assert out.proven.all()
     size = np.maximum(np.abs(np.hstack([out.center.real, out.center.imag])), np.hstack([scale, scale]))
     assert ((out.hi - out.lo) / size).max() <= 1e-15

@@ -159,3 +159,13 @@ def test_an_ill_conditioned_equilibrium_is_polished_and_certified():
                                                                               c.tension_upper)):
         slack = 1e-9 * np.abs(value).max()  # the reported root lies within the box tolerance of the proven zero
         assert np.all(lo - slack <= value) and np.all(value <= hi + slack)
+
+
+def test_far_platform_frame_endpoints_are_certified():
+    """m = 4, K = 1e5: the platform points lie 1.7e4 cable-geometry sizes from the platform frame's origin.  In the
+    robot's own frames 4 of the 215 regular endpoints were proven distinct roots (rotation errors multiplied by that
+    distance); in the cable frame (certificates.equilibria._cable_frame) every one is."""
+    robot, _, _, _ = large_force_robot(4, 1e5, 370)
+    assert np.linalg.norm(robot.platform.mean(axis=0)) > 1e3 * robot.cable_scale
+    sub, _ = solve_taut_set(robot, robot.lengths, tuple(range(4)), certify=False)
+    assert sub.certified == sub.outcomes["regular"] >= 200

@@ -536,9 +536,11 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
     (:func:`_compiled_krawczyk`, without the GIL).  Returns, per group,
     (:class:`cdpr_algebra.intervals.complex_krawczyk.ComplexRootBoxes`, overlapping (N,) bool): each root proven unique in its box of
     C^(12+m) (real or non-real proven where decidable), and the proven boxes meeting another proven box of the
-    same group (those roots are not proven distinct).  Constants: the robot's floats exactly, Q d and rho_i^2
-    enclosed.  ``balls`` (one bool per group, default all True): retry the roots of that group that double
-    precision could not certify in ball arithmetic."""
+    same group (those roots are not proven distinct).  The roots are certified in the cable frame
+    (:func:`_cable_frame`: p' = p + R cb - c, the boxes are of those coordinates; distinctness and reality do not
+    depend on the frame).  Constants: A_i - c, b'_i - cb, g' - cb, Q d and rho_i^2 enclosed.  ``balls`` (one bool per
+    group, default all True): retry the roots of that group that double precision could not certify in ball
+    arithmetic."""
     from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes, certify_complex_roots, overlapping
     from cdpr_algebra.intervals.arithmetic import Interval
 
@@ -550,32 +552,33 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
         raise ValueError("certify_endpoints: every group needs the same number m >= 2 of taut cables")
     rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
     rows = np.concatenate([np.repeat(np.asarray(c)[None], len(Z), axis=0) for c, Z in groups]).reshape(-1, m)
-    Z = np.concatenate([Z for _, Z in groups]).reshape(-1, 12 + m)
-    g = [float(c) for c in robot.com]
+    frame = _cable_frame(robot)
+    Z = _in_frame(np.concatenate([Z for _, Z in groups]).reshape(-1, 12 + m), frame)
     f_float = [robot.load * float(c) for c in robot.load_direction]
     f_iv = [Interval.point(robot.load) * float(c) for c in robot.load_direction]
+    constants = {iv: _frame_constants(robot, rows, frame, iv) for iv in (False, True)}
 
-    def system(f, square):
-        """The taut system of the rows r with the constants of their taut sets (exact floats; f and rho^2 as
-        ``square`` makes them)."""
+    def system(f, square, iv):
+        """The taut system of the rows r with the constants of their taut sets (enclosed with ``iv``; f and rho^2
+        as ``square`` makes them)."""
+        A_all, b_all, g = constants[iv]
 
         def evaluate(x, r, jac):
-            cab = rows[r]
-            A = [[robot.base[cab[:, i], k] for k in range(3)] for i in range(m)]
-            b = [[robot.platform[cab[:, i], k] for k in range(3)] for i in range(m)]
-            return taut_system(x, A, b, g, f, [square(rho[cab[:, i]]) for i in range(m)], jacobian=jac)
+            A = [[a[r] for a in Ai] for Ai in A_all]
+            b = [[c[r] for c in bi] for bi in b_all]
+            return taut_system(x, A, b, g, f, [square(rho[rows[r][:, i]]) for i in range(m)], jacobian=jac)
 
         return evaluate
 
-    rigorous = system(f_iv, lambda v: Interval.point(v).sqr())  # rho^2 enclosed
-    approximate = system(f_float, lambda v: v ** 2)
+    rigorous = system(f_iv, lambda v: Interval.point(v).sqr(), True)  # rho^2 enclosed
+    approximate = system(f_float, lambda v: v ** 2, False)
 
     scale = _scales(robot, m, range(12 + m), robot.cable_scale)
     boxes = certify_complex_roots(rigorous, approximate, Z, scale,
-                                  kernel=_compiled_krawczyk(robot, rho, rows, f_iv))
+                                  kernel=_compiled_krawczyk(rho, rows, f_iv, constants[True]))
     balls = [True] * len(groups) if balls is None else list(balls)
     retry = np.concatenate([np.full(len(Zg), bool(f)) for (_, Zg), f in zip(groups, balls)]).astype(bool)
-    boxes = _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry)
+    boxes = _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry, frame)
     out, k0 = [], 0
     for _, Zg in groups:
         sl = slice(k0, k0 + len(Zg))
@@ -588,20 +591,48 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
     return out
 
 
-def _compiled_krawczyk(robot, rho, rows, f_iv):
+def _in_frame(Z, frame):
+    """Roots (N, 12 + m) in world coordinates (p, u, v, w, lam) taken to the frame (c, cb) of :func:`_cable_frame`:
+    p' = p + R cb - c, R = [u v w]."""
+    c, cb = frame
+    out = np.array(Z, copy=True)
+    out[:, :3] = Z[:, :3] + Z[:, 3:6] * cb[0] + Z[:, 6:9] * cb[1] + Z[:, 9:12] * cb[2] - c
+    return out
+
+
+def _frame_constants(robot, rows, frame, interval: bool):
+    """(A, b, g) of the roots' taut sets (``rows``: N x m cable indices) in the frame (c, cb): A_i - c (m x 3 arrays
+    over the roots), b'_i - cb, g' - cb; enclosed (:class:`cdpr_algebra.intervals.arithmetic.Interval`) with
+    ``interval``, else rounded."""
+    from cdpr_algebra.intervals.arithmetic import Interval
+
+    c, cb = frame
+    num = Interval.point if interval else (lambda v: v)
+
+    def shifted(values, o):
+        return num(values) - num(float(o))
+
+    m = rows.shape[1]
+    A = [[shifted(robot.base[rows[:, i], k], c[k]) for k in range(3)] for i in range(m)]
+    b = [[shifted(robot.platform[rows[:, i], k], cb[k]) for k in range(3)] for i in range(m)]
+    g = [shifted(robot.com[k], cb[k]) for k in range(3)]
+    return A, b, g
+
+
+def _compiled_krawczyk(rho, rows, f_iv, constants):
     """The Krawczyk operator of the taut systems of the roots (``rows``: their taut sets, N x m) over boxes, compiled
     (:func:`cdpr_algebra.intervals.complex_kernels.krawczyk_kernel` on the generated interval evaluator
-    :mod:`cdpr_algebra.generated.taut_equations_intervals`), with the constants of :func:`certify_endpoints`: the
-    robot's floats exactly, rho_i^2 and Q d enclosed.  Same operator as the interval objects, without the GIL."""
+    :mod:`cdpr_algebra.generated.taut_equations_intervals`), with the constants of :func:`certify_endpoints`
+    (``constants``: the enclosed (A, b, g) of :func:`_frame_constants`; rho_i^2 and Q d enclosed).  Same operator
+    as the interval objects, without the GIL."""
     from cdpr_algebra.generated.taut_equations_intervals import taut_equations as ev, taut_residual as res
     from cdpr_algebra.intervals.arithmetic import Interval
     from cdpr_algebra.intervals.complex_kernels import krawczyk_kernel
 
     m = rows.shape[1]
-    A = [[robot.base[rows[:, i], k] for k in range(3)] for i in range(m)]
-    b = [[robot.platform[rows[:, i], k] for k in range(3)] for i in range(m)]
+    A, b, g = constants
     rho2 = [Interval.point(rho[rows[:, i]]).sqr() for i in range(m)]
-    params = _parameters(A, b, [float(c) for c in robot.com], f_iv, rho2)
+    params = _parameters(A, b, g, f_iv, rho2)
     P = np.zeros((len(rows), len(params), 4))  # (lo, hi, 0, 0): real intervals
     for k, v in enumerate(params):
         P[:, k, 0], P[:, k, 1] = (v.lo, v.hi) if isinstance(v, Interval) else (v, v)
@@ -622,10 +653,11 @@ BALL_PREC = 256  # bits
 FLINT = threading.RLock()  # python-flint's working precision is global to the process: one thread at a time uses it
 
 
-def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry):
+def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry, frame=None):
     """The roots that double-precision interval arithmetic could not certify, tested again in complex ball
     arithmetic at ``BALL_PREC`` bits (:func:`cdpr_algebra.intervals.complex_krawczyk.certify_complex_root_balls`; only rows with
-    ``retry``, at most ``BALL_RETRY_MAX`` of them, the others keep their reason)."""
+    ``retry``, at most ``BALL_RETRY_MAX`` of them, the others keep their reason; ``frame``: Z's frame, see
+    :func:`certify_endpoints`, None for world coordinates)."""
     from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes
 
     todo = [k for k in np.flatnonzero(~boxes.proven & retry) if np.all(np.isfinite(Z[k]))]
@@ -636,13 +668,13 @@ def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry):
     if not todo:
         return ComplexRootBoxes(proven, lo, hi, real, nonreal, boxes.center, tuple(reason))
     with FLINT:
-        _ball_proofs(robot, rho, rows, Z, scale, todo[:BALL_RETRY_MAX], proven, lo, hi, real, nonreal, reason)
+        _ball_proofs(robot, rho, rows, Z, scale, todo[:BALL_RETRY_MAX], proven, lo, hi, real, nonreal, reason, frame)
     for k in todo[BALL_RETRY_MAX:]:
         reason[k] += f" (not retried in ball arithmetic: more than {BALL_RETRY_MAX} such roots)"
     return ComplexRootBoxes(proven, lo, hi, real, nonreal, boxes.center, tuple(reason))
 
 
-def _ball_proofs(robot, rho, rows, Z, scale, todo, proven, lo, hi, real, nonreal, reason):
+def _ball_proofs(robot, rho, rows, Z, scale, todo, proven, lo, hi, real, nonreal, reason, frame=None):
     """The ball-arithmetic Krawczyk test of the roots ``todo`` (see :func:`_retry_in_balls`; updates the arrays)."""
     from flint import ctx
 
@@ -652,7 +684,7 @@ def _ball_proofs(robot, rho, rows, Z, scale, todo, proven, lo, hi, real, nonreal
         f = [arb(robot.load) * arb(float(c)) for c in robot.load_direction]
         for k in todo:
             taut = [int(c) for c in rows[k]]
-            A, b, g, _ = _robot_data(robot, taut, float)
+            A, b, g, _ = _robot_data(robot, taut, float if frame is None else arb, frame=frame)
             rho2 = [arb(float(rho[i])) * arb(float(rho[i])) for i in taut]
 
             def system(x, jac, A=A, b=b, rho2=rho2):
