@@ -155,6 +155,7 @@ def test_an_ill_conditioned_equilibrium_is_polished_and_certified():
     hits = [s for s in sols if np.allclose(s.tensions, tau, rtol=1e-6)]
     assert len(hits) == 1 and hits[0].certified
     c, s = hits[0].certificate, hits[0]
+    assert 1e-10 < c.extra["polished"] <= 1e-6 and c.to_dict()["polished"] == c.extra["polished"]
     for value, lo, hi in ((s.position, c.position_lower, c.position_upper), (s.tensions, c.tension_lower,
                                                                               c.tension_upper)):
         slack = 1e-9 * np.abs(value).max()  # the reported root lies within the box tolerance of the proven zero

@@ -575,8 +575,10 @@ def _certify_solutions(robot, rho, sols):
             if c.exists_unique:
                 tau = np.zeros(robot.n)
                 tau[idx] = t
-                s, cert = replace(s, position=p, rotation=R, tensions=tau, hessian=_classify(robot, rho, idx, p, R,
-                                                                                             t)), c
+                moved = float(max(np.abs(p - s.position).max() / robot.cable_scale,
+                                  np.abs(t - s.tensions[idx]).max() / np.abs(t).max()))
+                s = replace(s, position=p, rotation=R, tensions=tau, hessian=_classify(robot, rho, idx, p, R, t))
+                cert = replace(c, extra={**c.extra, "polished": moved})
         out.append(s.with_certificate(cert))
     return out
 
