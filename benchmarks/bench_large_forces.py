@@ -37,13 +37,12 @@ def _newton_confirms(robot, cables, p, R, tau, dps: int = 60) -> bool:
     import mpmath
 
     import cdpr_algebra.dgp.solve as S
-    from cdpr_algebra.model.taut_equations import taut_family
+    from cdpr_algebra.model.taut_equations import encode, taut_family
 
     m = len(cables)
     rho = robot.lengths
     target, c, L, Rw, cb = S._normalized(robot, rho, cables)
-    Rh = Rw @ R
-    x0 = np.concatenate([Rw @ (p + R @ cb - c) / L, Rh[:, 0], Rh[:, 1], Rh[:, 2], L * tau / (robot.load * rho[list(cables)])])
+    x0 = S._normalized_coordinates(encode(p, R, tau / rho[list(cables)])[None], m, c, L, Rw, cb, robot.load)[0]
     F, J, _ = taut_family(m).mp_functions()
     with mpmath.workdps(dps):
         pt = [mpmath.mpc(complex(v)) for v in target]

@@ -170,3 +170,25 @@ def test_far_platform_frame_endpoints_are_certified():
     assert np.linalg.norm(robot.platform.mean(axis=0)) > 1e3 * robot.cable_scale
     sub, _ = solve_taut_set(robot, robot.lengths, tuple(range(4)), certify=False)
     assert sub.certified == sub.outcomes["regular"] >= 200
+
+
+def test_normalized_coordinates_invert_world_coordinates():
+    """dgp.solve's map to the normalized problem (_normalized_coordinates) and back (_world_coordinates) are inverse
+    on random complex rows, and the constructed equilibrium of a far-centre-of-mass robot maps to a root of the
+    normalized system the tracker solves (residual at rounding level)."""
+    import cdpr_algebra.dgp.solve as D
+    from cdpr_algebra.model.taut_equations import encode
+
+    m = 5
+    robot, p, R, tau = large_force_robot(m, 1e5, 380)
+    target, c, L, Rw, cb = D._normalized(robot, robot.lengths, range(m))
+    rng = np.random.default_rng(7)
+    X = rng.normal(size=(4, 12 + m)) + 1j * rng.normal(size=(4, 12 + m))
+    for Y in (D._world_coordinates(D._normalized_coordinates(X, m, c, L, Rw, cb, robot.load), m, c, L, Rw, cb,
+                                   robot.load),
+              D._normalized_coordinates(D._world_coordinates(X, m, c, L, Rw, cb, robot.load), m, c, L, Rw, cb,
+                                        robot.load)):
+        assert np.allclose(Y, X, rtol=0, atol=1e-9 * np.abs(X).max())
+    x = D._normalized_coordinates(encode(p, R, tau / robot.lengths)[None], m, c, L, Rw, cb, robot.load)
+    F, _ = D.fast_family(m).evaluate_and_jacobian(x.astype(complex), target)
+    assert np.abs(F).max() <= 1e-9 * np.abs(x).max() ** 2

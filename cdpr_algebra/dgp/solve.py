@@ -691,6 +691,14 @@ def _world_coordinates(X, m, c, L, Rw, cb, Q):
     return np.hstack([p, u, v, w, Q * X[:, 12:12 + m] / L])
 
 
+def _normalized_coordinates(X, m, c, L, Rw, cb, Q):
+    """The inverse of :func:`_world_coordinates`: rows (p, u, v, w, lam) of the robot -> (p^, u^, v^, w^, lam^),
+    u^ = Rw u (and v, w), p^ = Rw (p + R cb - c) / L, lam^ = L lam / Q."""
+    u, v, w = X[:, 3:6], X[:, 6:9], X[:, 9:12]
+    p = (X[:, 0:3] + cb[0] * u + cb[1] * v + cb[2] * w - c) @ Rw.T / L
+    return np.hstack([p, u @ Rw.T, v @ Rw.T, w @ Rw.T, L * X[:, 12:12 + m] / Q])
+
+
 def _with_endpoint_certificates(robot, rho, items) -> list:
     """The subproblems of ``items`` = [(0-based cables, DGPSubproblem, regular endpoints in world coordinates or
     None)] with their endpoint certificates (one vectorized Krawczyk run per m, :func:`cdpr_algebra.certificates.equilibria.certify_endpoints`)
