@@ -244,24 +244,19 @@ def _hessian_class(inertia, m) -> tuple[str, str | None]:
 
 
 def _robot_balls(robot, frame=None):
-    """(A_i, b'_i, g') of the robot as balls: exact, or in the ``frame`` (c, cb) of :func:`_cable_frame` (A_i - c,
+    """(A_i, b'_i, g') of all n cables as balls: exact, or in the ``frame`` (c, cb) of :func:`_cable_frame` (A_i - c,
     b'_i - cb, g' - cb, the differences enclosed)."""
-    c, cb = frame if frame is not None else (np.zeros(3), np.zeros(3))
-
-    def shifted(points, o):
-        return [[arb(float(v)) - arb(float(o[k])) for k, v in enumerate(pt)] for pt in np.atleast_2d(points)]
-
-    return shifted(robot.base, c), shifted(robot.platform, cb), shifted(robot.com, cb)[0]
+    return _robot_data(robot, range(robot.n), arb, frame=frame)[:3]
 
 
 def _cable_frame(robot):
-    """(c, cb): the centroid of the base points and of the platform points.  The DGP's root is certified with the
-    world origin moved to c and the platform frame to cb (an equivalent system: given force balance, moments about c
-    are moments about the world origin minus c x the load).  In the robot's own frames a pose far from the world
+    """(c, cb) = :attr:`cdpr_algebra.model.robot.Robot.cable_frame`.  The DGP's root is certified with the world
+    origin moved to c and the platform frame to cb (an equivalent system: given force balance, moments about c are
+    moments about the world origin minus c x the load).  In the robot's own frames a pose far from the world
     origin, or attachment points far from the platform frame's origin, multiply the rotation's and tensions'
     rounding by those distances: a platform 1e4 sizes from its frame's origin (tests/large_forces.py) was not
     certified at any box width."""
-    return robot.base.mean(axis=0), robot.platform.mean(axis=0)
+    return robot.cable_frame
 
 
 def _consequences(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None, frame=None) -> Certificate:
@@ -442,7 +437,7 @@ def _taut_problem(robot, lengths, cables, position, rotation, tensions):
                          f"{tensions.shape} tensions")
     frame = _cable_frame(robot)
     R0 = np.asarray(rotation, float)
-    x0 = encode(np.asarray(position, float) + R0 @ frame[1] - frame[0], R0, tensions / rho[taut])
+    x0 = _in_frame(encode(np.asarray(position, float), R0, tensions / rho[taut])[None], frame)[0]
     if m >= 2:
         def make_system(num):
             A, b, g, f = _robot_data(robot, taut, num, frame=frame)
@@ -684,7 +679,7 @@ def _ball_proofs(robot, rho, rows, Z, scale, todo, proven, lo, hi, real, nonreal
         f = [arb(robot.load) * arb(float(c)) for c in robot.load_direction]
         for k in todo:
             taut = [int(c) for c in rows[k]]
-            A, b, g, _ = _robot_data(robot, taut, float if frame is None else arb, frame=frame)
+            A, b, g, _ = _robot_data(robot, taut, arb, frame=frame)  # exact at BALL_PREC
             rho2 = [arb(float(rho[i])) * arb(float(rho[i])) for i in taut]
 
             def system(x, jac, A=A, b=b, rho2=rho2):

@@ -428,8 +428,7 @@ def _normalized(robot, rho, cables):
     (a long boom, or robots built with huge internal forces, tests/large_forces.py) does not shrink it.  Measured
     (thirteenth session, m = 4 and 5, K = 1e5, g' 1e4-1.5e5 sizes away): 0-2 failed paths instead of 138-194 with
     the robot's size, which includes |b'_i - g'|."""
-    c = robot.base.mean(axis=0)
-    cb = robot.platform.mean(axis=0)
+    c, cb = robot.cable_frame
     L = robot.cable_scale
     Rw = rotation_taking(robot.load_direction, np.array([0.0, 0.0, -1.0]))
     idx = list(cables)

@@ -138,6 +138,12 @@ class Robot:
         scale = max(float(np.ptp(self.base, axis=0).max()), float(np.ptp(self.platform, axis=0).max()))
         return scale if scale > 0 else self._size
 
+    @property
+    def cable_frame(self) -> tuple:
+        """(c, cb): the centroids of the base points and of the platform points, the origins of the frames in which
+        the DGP is normalized and its roots certified (distances to them are of the order of :attr:`cable_scale`)."""
+        return self.base.mean(axis=0), self.platform.mean(axis=0)
+
     def with_lengths(self, lengths) -> "Robot":
         return Robot(self.base, self.platform, self.com, self.load, self.load_direction, lengths, self.name)
 
