@@ -28,6 +28,7 @@ def warm_kernels(robot) -> dict:
 
     from cdpr_algebra.bp.search import interval_dgp
     from cdpr_algebra.dgp.solve import dgp
+    from cdpr_algebra.dgp.study_retrack import warm_study_kernels
     from cdpr_algebra.track.follow import track
     from cdpr_algebra.track.trajectory import straight
 
@@ -36,6 +37,7 @@ def warm_kernels(robot) -> dict:
     seconds = {}
     t0 = time.perf_counter()
     dgp(robot, jobs=1)
+    warm_study_kernels()  # the re-tracking of failed paths, which a robot without them never reaches
     seconds["dgp"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     interval_dgp(robot, max_m=3)

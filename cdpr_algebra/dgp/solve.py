@@ -94,6 +94,7 @@ import numpy as np
 from cdpr_algebra.model.taut_equations import decode, taut_family
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .one_cable import one_cable_equilibria
+from .study_retrack import retrack_failed_in_study
 from cdpr_algebra.homotopy.results import AT_INFINITY, ENDGAME_FAILED, FAILURES, OUTCOMES, outcome_counts
 from cdpr_algebra.report.jsonable import jsonable
 from cdpr_algebra.model.pose import angles_from_matrix, rotation_taking
@@ -478,6 +479,7 @@ RERUN_MAX_FAILED = 2  # re-run a subproblem with a new gamma only when at most t
 # update where two do not reach it).  Measured on seed 000 Tests 2 and 3 (tenth session): 1e-4 -> 3e-4 takes
 # Test 3's phase 1 from 533k to 457k steps; 1e-3 (413k) left one more subproblem of Test 2 incomplete.
 PREDICTOR_TOL = 3e-4
+STUDY_RETRACK = True  # failed paths tracked again in Study parameters (dgp.study_retrack)
 PROJECTIVE_RETRIES = 1  # rounds of projective re-tracking of suspect paths (step control tightened 10x)
 
 
@@ -510,6 +512,8 @@ def _track(m, target, seed, gamma, options=None):
     (res,) = solve_targets(fast_family(m), p_gen, X_gen, [target], seed=seed, options=options, gamma=gamma,
                            retries=PROJECTIVE_RETRIES)
     res = _tension_infinity_undecided(res, m)
+    if STUDY_RETRACK:
+        res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, options)
     return res, sum(1 for p in res.track.paths if p.status in FAILURES)
 
 

@@ -1,0 +1,188 @@
+"""Failed DGP paths tracked again in Study parameters (:mod:`cdpr_algebra.model.study_equations`).
+
+The DGP tracks in (p, u, v, w, lam) (:mod:`cdpr_algebra.model.taut_equations`).  Its paths that pass near the isotropic
+infinity of the complex rotation group meet condition numbers of 1e10-1e11 there, and double precision loses them
+(``step_too_small``; README "What the failed paths are").  In Euler parameters on a chart, e . c = 1, those rotations
+are ordinary points with small N = e . e.  :func:`retrack_failed_in_study` takes each failed path's start point to
+Study coordinates and tracks it again along the same parameter path (the same segment, or the same gamma: the
+homotopy is drawn from the same seed), so it follows the same solution curve in other coordinates and ends on that
+path's own endpoint.  A path whose new run ends regular is kept when its endpoint, mapped back, solves the taut
+system to ``RESIDUAL_TOL`` and is distinct from every other path's regular endpoint (a coincidence means a jump of one
+of them: the path stays failed, nothing is merged); every other path keeps its outcome.  Its endpoint is then
+certified like any other (the DGP's endpoint certificates, in the taut system).
+
+Measured (fifteenth session, Berti et al. 2016 Test 3, taut set {2, 3, 4, 5}, 13 failed paths in (p, u, v, w, lam)):
+with the generic engine tracking all 216 paths in Study parameters 213 end regular; the 10 former failures among
+them end at complex poses with |R| = 1.6e3 .. 2.1e4 (N / |e|^2 = 6e-4 .. 5e-5), the 203 others on the same points
+as before (relative differences <= 4e-9).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from cdpr_algebra.homotopy.results import FAILURES, SUCCESS
+from cdpr_algebra.model.study_equations import STUDY_CHART_PARAMETERS, from_study, study_family, to_study
+
+__all__ = ["FastStudySystem", "fast_study_family", "retrack_failed_in_study", "warm_study_kernels", "RESIDUAL_TOL"]
+
+RESIDUAL_TOL = 1e-8  # residual of the mapped-back endpoint in the taut system after Newton (endgame.refine's measure)
+DISTINCT_TOL = 1e-6  # relative distance under which two regular endpoints are one point (the endgame's cluster_tol)
+EXTENDED = True  # Newton residuals in double-double where double precision stalls (TrackerOptions.extended_residual)
+MAX_STEPS = 3000  # steps per path and segment of the Study run
+CHART_SEED = 104729  # the chart c of e: drawn from this seed (any generic complex vector serves)
+
+
+class FastStudySystem:
+    """:func:`cdpr_algebra.model.study_equations.study_family` (m) with the compiled evaluator generated from it
+    (``derivations/derive_study_equations.py``); the sympy family (name, hash, equations, mpmath evaluators) is
+    built only when asked for."""
+
+    kernel_constants = None
+
+    def __init__(self, m: int):
+        self._family = None
+        self.mm = m
+        self.n = 8 + m
+        self.m = 7 * m + 6 + STUDY_CHART_PARAMETERS
+        self.neq = 8 + m
+
+    @property
+    def degrees(self) -> tuple:
+        return (1, 2) + (2,) * self.mm + (3,) * 6
+
+    @property
+    def family(self):
+        if self._family is None:
+            self._family = study_family(self.mm)
+        return self._family
+
+    def __getattr__(self, name):
+        if name.startswith("__") or name == "_family":
+            raise AttributeError(name)
+        return getattr(self.family, name)
+
+    def compiled_kernels(self):
+        """Evaluators for the compiled tracker (:mod:`cdpr_algebra.dgp.kernels`), dense LU."""
+        from cdpr_algebra.homotopy.compiled import dense_apply, dense_factor
+
+        from .kernels import study_fj, study_fjt
+
+        return study_fj, study_fjt, dense_factor, dense_apply
+
+    def compiled_residual_dd(self):
+        """The residual in double-double (:mod:`cdpr_algebra.generated.study_residual_dd`) for the compiled tracker's
+        extended-precision Newton."""
+        from cdpr_algebra.generated.study_residual_dd import study_residual
+
+        return study_residual
+
+    def _eval(self, x, p, dp=None):
+        from .kernels import study_batch
+
+        X = np.array(np.atleast_2d(np.asarray(x, dtype=complex)), order="C")
+        N = len(X)
+        P = np.array(np.broadcast_to(np.asarray(p, dtype=complex), (N, self.m)), order="C")
+        DP = P if dp is None else np.array(np.broadcast_to(np.asarray(dp, dtype=complex), (N, self.m)), order="C")
+        F = np.empty((N, self.neq), dtype=complex)
+        J = np.zeros((N, self.neq, self.n), dtype=complex)
+        H = np.zeros((N, self.neq), dtype=complex)
+        study_batch(X, P, DP, F, J, H, dp is not None)
+        return F, J, H
+
+    def evaluate(self, x, p=None):
+        return self._eval(x, p)[0]
+
+    def evaluate_and_jacobian(self, x, p=None):
+        return self._eval(x, p)[:2]
+
+    def evaluate_directional(self, x, p, dp):
+        return self._eval(x, p, dp)
+
+
+_FAST: dict = {}
+
+
+def fast_study_family(m: int) -> FastStudySystem:
+    if m not in _FAST:
+        _FAST[m] = FastStudySystem(m)
+    return _FAST[m]
+
+
+def warm_study_kernels() -> None:
+    """Compile (or load from numba's cache) the batched Study evaluator: ``cdpr warm`` calls it, since robots without
+    failed paths never reach it (its single-point kernels compile when :mod:`.kernels` is imported)."""
+    sys_ = fast_study_family(2)
+    x = np.ones(sys_.n, dtype=complex)
+    p = np.ones(sys_.m, dtype=complex)
+    sys_.evaluate_directional(x, p, p)
+
+
+def study_chart() -> np.ndarray:
+    """The chart c of e (fixed: a generic complex vector from CHART_SEED)."""
+    rng = np.random.default_rng(CHART_SEED)
+    return rng.normal(size=STUDY_CHART_PARAMETERS) + 1j * rng.normal(size=STUDY_CHART_PARAMETERS)
+
+
+def _study_options(options):
+    """The DGP's options for the Study run: affine endgame (the projective one homogenizes quadratic systems only),
+    no detours (one route for every path) and no retries of any kind (a path failed here stays failed)."""
+    from cdpr_algebra.homotopy.endgame import SolveOptions
+
+    base = options if options is not None else SolveOptions()
+    return replace(base, endgame=replace(base.endgame, projective=False), detour_retry=False, retry_tight=False,
+                   retry_mpmath=False, check_path_jumping=False,
+                   tracker=replace(base.tracker, extended_residual=EXTENDED, max_steps=MAX_STEPS))
+
+
+def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutions, target, seed: int, gamma: bool,
+                            options=None):
+    """``res`` (the :class:`.homotopy.results.SolveResult` of the taut system ``system`` from ``start_solutions`` at
+    ``start_parameters`` to ``target``, run with ``seed`` and ``gamma``) with its failed paths tracked again in Study
+    parameters (module doc); rescued paths have ``retried="study"``.  Returns (result, number rescued)."""
+    from cdpr_algebra.homotopy.endgame import refine
+    from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
+    from cdpr_algebra.homotopy.solve import group_solutions, solve_parameter_homotopy
+
+    paths = list(res.track.paths)
+    failed = [i for i, p in enumerate(paths) if p.status in FAILURES]
+    if not failed:
+        return res, 0
+    chart = study_chart()
+    X1 = np.asarray(start_solutions, dtype=complex)[failed]  # path k starts at start solution k
+    Y1 = to_study(X1, m, chart)
+    opts = _study_options(options)
+    sres = solve_parameter_homotopy(fast_study_family(m), np.concatenate([start_parameters, chart]), Y1,
+                                    np.concatenate([np.asarray(target, dtype=complex), chart]), seed=seed,
+                                    options=opts, gamma=gamma, retries=0)
+    regular = [p.endpoint for p in paths if p.status == SUCCESS]
+    at_target = ParameterHomotopy(system, start_parameters, target)  # t = 0 is the target system
+    rescued = 0
+    for j, sp_ in enumerate(sres.track.paths):
+        if sp_.status != SUCCESS:
+            continue
+        x0 = from_study(sp_.endpoint, m)
+        if not np.all(np.isfinite(x0)):
+            continue
+        # Newton in the taut system (residuals in double-double where the system offers them), as every endpoint
+        x, upd, residual, cond, quad = refine(at_target, x0, 0.0)
+        x = x[0]
+        if not (quad[0] and residual[0] <= RESIDUAL_TOL and np.all(np.isfinite(x))):
+            continue
+        if any(np.max(np.abs(x - y)) <= DISTINCT_TOL * (1.0 + max(np.max(np.abs(x)), np.max(np.abs(y))))
+               for y in regular):
+            continue
+        i = failed[j]
+        paths[i] = replace(paths[i], status=SUCCESS, endpoint=x, t=0j, residual=float(residual[0]),
+                           condition=float(cond[0]), accuracy=float(upd[0]), steps=paths[i].steps + sp_.steps,
+                           winding_number=1, retried="study")
+        regular.append(x)
+        rescued += 1
+    if not rescued:
+        return res, 0
+    track = replace(res.track, paths=tuple(paths))
+    o = options if options is not None else opts
+    sols = group_solutions(track, o.duplicate_tol, o.endgame.cluster_tol)
+    return replace(res, track=track, solutions=sols), rescued

@@ -1,0 +1,137 @@
+"""The DGP equations in Study parameters (model.study_equations, generated evaluator) and the re-tracking of failed
+paths in them (dgp.study_retrack)."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from cdpr_algebra import load_robot
+from cdpr_algebra.dgp import solve as S
+from cdpr_algebra.dgp.kernels import study_fj, study_fjt
+from cdpr_algebra.dgp.study_retrack import retrack_failed_in_study, study_chart
+from cdpr_algebra.homotopy.results import STEP_TOO_SMALL, SUCCESS
+from cdpr_algebra.model.study_equations import from_study, rotation_quaternions, study_family, to_study
+from cdpr_algebra.model.taut_equations import taut_family
+
+ROOT = __import__("pathlib").Path(__file__).resolve().parent.parent
+
+
+@pytest.mark.parametrize("m", [2, 3, 4, 5, 6])
+def test_study_kernels_equal_sympy_family(m):
+    fam = study_family(m)
+    rng = np.random.default_rng(10 + m)
+    for _ in range(2):
+        x = rng.normal(size=fam.n) + 1j * rng.normal(size=fam.n)
+        p = rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m)
+        dp = rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m)
+        F0, J0, JP0 = fam.evaluate_all(x[None], p)
+        F = np.empty(fam.neq, complex)
+        J = np.zeros((fam.neq, fam.n), complex)
+        Ht = np.empty(fam.neq, complex)
+        study_fjt(x, p, dp, F, J, Ht)
+        scale = 1 + np.abs(F0).max() + np.abs(J0).max()
+        assert np.abs(F - F0[0]).max() <= 1e-13 * scale
+        assert np.abs(J - J0[0]).max() <= 1e-13 * scale
+        assert np.abs(Ht - JP0[0] @ dp).max() <= 1e-13 * scale * (1 + np.abs(dp).max())
+        F2 = np.empty(fam.neq, complex)
+        J2 = J.copy()
+        study_fj(x, p, F2, J2)
+        assert np.array_equal(F2, F) and np.array_equal(J2, J)
+
+
+def test_quaternions_of_rotations():
+    """R(e) of the quaternions found is the rotation, for real rotations (every branch of the formula) and complex
+    ones with large entries (exp of a complex skew matrix)."""
+    from scipy.linalg import expm
+
+    rng = np.random.default_rng(3)
+    Rs = [np.diag([1.0, -1.0, -1.0]), np.diag([-1.0, 1.0, -1.0]), np.diag([-1.0, -1.0, 1.0]), np.eye(3)]
+    for _ in range(6):
+        w = rng.normal(size=3) * 3 + 1j * rng.normal(size=3) * 4
+        K = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+        Rs.append(expm(K))
+    n = np.array([1.0, 2.0, 2.0]) / 3  # the angle 1 + 8i about n: entries ~ e^8 / 2
+    Rs.append(expm((1 + 8j) * np.array([[0, -n[2], n[1]], [n[2], 0, -n[0]], [-n[1], n[0], 0]])))
+    Rs = np.array(Rs, dtype=complex)
+    assert np.max(np.abs(Rs[-1])) > 1e3  # a complex rotation far from the real ones
+    X = np.hstack([rng.normal(size=(len(Rs), 3)), Rs[:, :, 0], Rs[:, :, 1], Rs[:, :, 2], rng.normal(size=(len(Rs), 2))])
+    e = rotation_quaternions(Rs)
+    assert np.all(np.abs(np.sum(e * e, axis=1)) > 0)
+    back = from_study(to_study(X, 2, study_chart()), 2)
+    assert np.max(np.abs(back - X) / (1 + np.abs(X))) < 1e-10
+
+
+@pytest.mark.parametrize("m", [2, 3, 4, 5, 6])
+def test_generic_solutions_map_to_study_solutions(m):
+    """Every stored generic solution of the taut family, mapped to Study parameters, solves the Study family at the
+    same parameters (with the chart), and maps back to itself."""
+    p, X = S._generic(m)
+    c = study_chart()
+    Y = to_study(X, m, c)
+    F = study_family(m).evaluate(Y, np.concatenate([p, c]))
+    assert np.max(np.abs(F) / (1 + np.max(np.abs(Y), axis=1))[:, None] ** 3) < 1e-9
+    assert np.max(np.abs(from_study(Y, m) - X)) <= 1e-9 * (1 + np.max(np.abs(X)))
+    assert np.max(np.abs(taut_family(m).evaluate(from_study(Y, m), p))) < 1e-8 * (1 + np.max(np.abs(X))) ** 2
+
+
+@pytest.mark.parametrize("cables,gamma", [((0, 1), False), ((0, 1, 2), True)])
+def test_retracked_paths_end_where_the_taut_paths_end(cables, gamma):
+    """Tracked again in Study parameters along the same route (the straight segment, or the gamma drawn from the same
+    seed), every path of a Test 1 subproblem ends on the point that the same path reached in (p, u, v, w, lam): each
+    path is marked failed, re-tracked, and must come back with its own endpoint (a wrong route or map would swap or
+    lose them)."""
+    robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
+    rho = np.asarray(robot.lengths, float)
+    m = len(cables)
+    target = S._normalized(robot, rho, cables)[0]
+    seed = 5
+    res, failed = S._track(m, target, seed, gamma=gamma)
+    assert failed == 0
+    paths = res.track.paths
+    assert all(p.status == SUCCESS for p in paths)
+    marked = replace(res, track=replace(res.track, paths=tuple(replace(p, status=STEP_TOO_SMALL) for p in paths)))
+    p_gen, X_gen = S._generic(m)
+    again, rescued = retrack_failed_in_study(S.fast_family(m), marked, m, p_gen, X_gen, target, seed, gamma,
+                                             S.default_options())
+    assert rescued == len(paths)
+    for before, after in zip(paths, again.track.paths):
+        assert after.status == SUCCESS and after.retried == "study"
+        assert np.max(np.abs(after.endpoint - before.endpoint)) <= 1e-8 * (1 + np.max(np.abs(before.endpoint)))
+    assert len(again.solutions) == len(paths)
+
+
+def test_retrack_never_merges():
+    """A path whose Study run ends on another path's endpoint stays failed: two paths marked failed, one of them
+    also keeping its success (so its point is taken), the other rescued only when its point is new."""
+    robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
+    rho = np.asarray(robot.lengths, float)
+    target = S._normalized(robot, rho, (0, 1))[0]
+    res, _ = S._track(2, target, 0, gamma=False)
+    paths = list(res.track.paths)
+    # path 1 is marked failed but path 0 is given path 1's endpoint: the point path 1 reaches is already held
+    paths[0] = replace(paths[0], endpoint=paths[1].endpoint)
+    paths[1] = replace(paths[1], status=STEP_TOO_SMALL)
+    marked = replace(res, track=replace(res.track, paths=tuple(paths)))
+    p_gen, X_gen = S._generic(2)
+    again, rescued = retrack_failed_in_study(S.fast_family(2), marked, 2, p_gen, X_gen, target, 0, False,
+                                             S.default_options())
+    assert rescued == 0 and again.track.paths[1].status == STEP_TOO_SMALL
+
+
+def test_study_residual_in_double_double():
+    """The generated double-double residual of the Study family rounds to the float residual (random complex points,
+    m = 2 and 5), through the tracker's own entry point (compiled.residual_dd of a parameter homotopy, t = 0)."""
+    from cdpr_algebra.dgp.study_retrack import fast_study_family
+    from cdpr_algebra.homotopy.compiled import residual_dd
+    from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
+
+    rng = np.random.default_rng(7)
+    for m in (2, 5):
+        sys_ = fast_study_family(m)
+        p1 = rng.normal(size=sys_.m) + 1j * rng.normal(size=sys_.m)
+        p0 = rng.normal(size=sys_.m) + 1j * rng.normal(size=sys_.m)
+        X = rng.normal(size=(4, sys_.n)) + 1j * rng.normal(size=(4, sys_.n))
+        dd = residual_dd(ParameterHomotopy(sys_, p1, p0))(X, 0.0)
+        F = study_family(m).evaluate(X, p0)
+        assert np.max(np.abs(dd - F)) <= 1e-12 * (1 + np.max(np.abs(F)))
