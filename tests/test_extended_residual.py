@@ -162,19 +162,29 @@ def test_extended_residual_follows_paths_double_precision_cannot():
 
 
 @pytest.mark.parametrize("cables", [(1, 3, 4), (2, 3, 4, 5)])
-def test_extended_precision_completes_marionet_subproblems(cables):
-    """Seed 000 Test 3, taut sets {2, 4, 5} and {3, 4, 5, 6}: some paths fail in double precision; with the
-    extended residual (``default_options(extended=True)``) none does, the outcomes account for every path, every
-    regular endpoint is certified, and the regular solutions found without it are among those found with it."""
+def test_extended_precision_completes_marionet_subproblems(cables, monkeypatch):
+    """Seed 000 Test 3, taut sets {2, 4, 5} and {3, 4, 5, 6}: some paths fail in double precision (without the
+    re-tracking in Study parameters); with the extended residual (``default_options(extended=True)``) none does, the
+    outcomes account for every path, every regular endpoint is certified, and the regular solutions found without it
+    are among those found with it.  The default DGP (double precision, then failed paths re-tracked in Study
+    parameters with double-double residuals, dgp.study_retrack) completes them too, every path regular and certified
+    (on {2, 4, 5} the extended run ends 4 paths singular, which the Study run ends on 4 distinct certified roots)."""
+    from cdpr_algebra.dgp import solve as D
     from cdpr_algebra.dgp.solve import solve_taut_set
 
     robot = load_robot(EXAMPLES / "seed000_test3.toml")
+    monkeypatch.setattr(D, "STUDY_RETRACK", False)
     plain, _ = solve_taut_set(robot, robot.lengths, cables, options=default_options())
     ext, _ = solve_taut_set(robot, robot.lengths, cables, options=default_options(extended=True))
     assert not plain.complete and plain.outcomes["failed"] > 0
     assert ext.complete and ext.outcomes["failed"] == 0 and sum(ext.outcomes.values()) == ext.paths
     assert ext.certified == ext.outcomes["regular"] >= plain.certified
     assert ext.real >= plain.real and ext.admissible == plain.admissible
+    monkeypatch.setattr(D, "STUDY_RETRACK", True)
+    study, _ = solve_taut_set(robot, robot.lengths, cables, options=default_options())
+    assert study.complete and study.outcomes["failed"] == 0 and sum(study.outcomes.values()) == study.paths
+    assert study.certified == study.outcomes["regular"] >= ext.outcomes["regular"]
+    assert study.real >= plain.real and study.admissible == ext.admissible
 
 
 def test_cli_extended_precision(capsys):
@@ -188,14 +198,17 @@ def test_cli_extended_precision(capsys):
     assert len(out["solutions"]) == 6
 
 
-def test_crosscheck_compares_what_extended_precision_completes(capsys):
-    """`cdpr crosscheck` on Test 3's taut set {2, 4, 5}: the homotopy's account is incomplete in double precision, so
-    the subproblem is not compared; with --extended-precision it is complete and agrees with the interval solver."""
+def test_crosscheck_compares_what_extended_precision_completes(capsys, monkeypatch):
+    """`cdpr crosscheck` on Test 3's taut set {2, 4, 5}: the homotopy's account is incomplete in double precision
+    (without the re-tracking in Study parameters), so the subproblem is not compared; with --extended-precision it is
+    complete and agrees with the interval solver."""
     import json
 
     from cdpr_algebra.cli.main import main
+    from cdpr_algebra.dgp import solve as D
 
     path = str(EXAMPLES / "seed000_test3.toml")
+    monkeypatch.setattr(D, "STUDY_RETRACK", False)
     main(["crosscheck", path, "--taut", "2", "4", "5", "--jobs", "1", "--json"])
     plain = json.loads(capsys.readouterr().out)
     assert main(["crosscheck", path, "--taut", "2", "4", "5", "--jobs", "1", "--extended-precision", "--json"]) == 0

@@ -31,7 +31,6 @@ __all__ = ["FastStudySystem", "fast_study_family", "retrack_failed_in_study", "w
 RESIDUAL_TOL = 1e-8  # residual of the mapped-back endpoint in the taut system after Newton (endgame.refine's measure)
 DISTINCT_TOL = 1e-6  # relative distance under which two regular endpoints are one point (the endgame's cluster_tol)
 EXTENDED = True  # Newton residuals in double-double where double precision stalls (TrackerOptions.extended_residual)
-MAX_STEPS = 3000  # steps per path and segment of the Study run
 CHART_SEED = 104729  # the chart c of e: drawn from this seed (any generic complex vector serves)
 
 
@@ -127,14 +126,15 @@ def study_chart() -> np.ndarray:
 
 
 def _study_options(options):
-    """The DGP's options for the Study run: affine endgame (the projective one homogenizes quadratic systems only),
-    no detours (one route for every path) and no retries of any kind (a path failed here stays failed)."""
+    """The DGP's options for the Study run (its step budget and tolerances included): affine endgame (the projective
+    one homogenizes quadratic systems only), no detours (one route for every path), no retries of any kind (a path
+    failed here stays failed), and Newton residuals in double-double where double precision stalls (``EXTENDED``)."""
     from cdpr_algebra.homotopy.endgame import SolveOptions
 
     base = options if options is not None else SolveOptions()
     return replace(base, endgame=replace(base.endgame, projective=False), detour_retry=False, retry_tight=False,
                    retry_mpmath=False, check_path_jumping=False,
-                   tracker=replace(base.tracker, extended_residual=EXTENDED, max_steps=MAX_STEPS))
+                   tracker=replace(base.tracker, extended_residual=EXTENDED))
 
 
 def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutions, target, seed: int, gamma: bool,
