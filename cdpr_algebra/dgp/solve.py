@@ -37,7 +37,9 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   the same parameter path with steps tightened 10x (one round,
   ``PROJECTIVE_RETRIES``: a second round tightened 100x rescued none of 181 paths on seed 000 Test 3 and none of
   639 on Test 2; the paths still failed there lose accuracy to conditioning, 1e10..1e11 near large non-real
-  solutions or singular sets at infinity, which smaller steps do not restore).  If one or two failed
+  solutions or singular sets at infinity, which smaller steps do not restore).  Paths still failed are tracked
+  again in Study parameters along the same parameter path (``STUDY_RETRACK``, :mod:`.study_retrack`: near-isotropic
+  complex rotations are ordinary points there; kept only as distinct regular roots of the taut system).  If one or two failed
   paths remain (at most ``RERUN_MAX_FAILED``), the subproblem is re-run once with a random gamma and another seed,
   and the run with fewer failures is kept; with ``retry_mpmath`` in the options, paths still failed are also tracked in arbitrary precision
   (mpmath, 30 digits, at most ``MP_RETRY_PATHS`` = 4 paths per run: seconds to minutes per path, so off by
