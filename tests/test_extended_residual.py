@@ -185,6 +185,7 @@ def test_extended_precision_completes_marionet_subproblems(cables, monkeypatch):
     assert study.complete and study.outcomes["failed"] == 0 and sum(study.outcomes.values()) == study.paths
     assert study.certified == study.outcomes["regular"] >= ext.outcomes["regular"]
     assert study.real >= plain.real and study.admissible == ext.admissible
+    assert study.retried.get("study", 0) > 0 and study.to_dict()["retried"] == study.retried
 
 
 def test_cli_extended_precision(capsys):

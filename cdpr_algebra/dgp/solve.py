@@ -93,16 +93,18 @@ from pathlib import Path
 
 import numpy as np
 
-from cdpr_algebra.model.taut_equations import decode, taut_family
+from cdpr_algebra.model.taut_equations import decode
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .one_cable import one_cable_equilibria
 from .study_retrack import retrack_failed_in_study
+from .taut_system import FastTautSystem, fast_family
 from cdpr_algebra.homotopy.results import AT_INFINITY, ENDGAME_FAILED, FAILURES, OUTCOMES, outcome_counts
 from cdpr_algebra.report.jsonable import jsonable
 from cdpr_algebra.model.pose import angles_from_matrix, rotation_taking
 from cdpr_algebra.model.stability import stability_classes
 
-__all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune"]
+__all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune", "FastTautSystem",
+           "fast_family"]
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 REAL_TOL = 1e-6
@@ -199,6 +201,7 @@ class DGPSubproblem:
     uncertified: dict = field(default_factory=dict)  # regular endpoints not certified, per reason
     settled: str | None = None  # how the admissible set was proven complete although the homotopy's account is not
     excluded: int | None = None  # boxes of the interval proof that the set holds no admissible equilibrium (not tracked)
+    retried: dict = field(default_factory=dict)  # paths whose outcome came from a retry, per kind (detour, study, ..)
 
     @property
     def admissible_complete(self) -> bool:
@@ -231,7 +234,8 @@ class DGPSubproblem:
                 "uncertified": dict(self.uncertified),
                 "finite": self.finite, "real": self.real, "admissible": self.admissible,
                 "failed_paths": self.failed_paths, "seconds": self.seconds, "skipped": self.skipped,
-                "settled": self.settled, "admissible_complete": self.admissible_complete, "excluded": self.excluded}
+                "settled": self.settled, "admissible_complete": self.admissible_complete, "excluded": self.excluded,
+                "retried": dict(self.retried)}
 
 
 @dataclass(frozen=True)
@@ -297,111 +301,6 @@ class DGPResult:
 
 
 # ---------------------------------------------------------------------------------------------
-class FastTautSystem:
-    """:func:`cdpr_algebra.model.taut_equations.taut_family` (m) with compiled evaluators of F, dF/dx, dF/dp generated
-    from it (``derivations/derive_taut_equations.py``; checked against the sympy family's own evaluators in
-    tests/test_dgp.py).
-    Everything else (name, hash, equations, mpmath evaluators, used by the projective retries) is the
-    sympy family's."""
-
-    kernel_constants = None  # no constants beyond the parameters (answered here: asking the family builds it)
-
-    def __init__(self, m: int):
-        self._family = None
-        self.mm = m
-        self.n = 12 + m  # p, u, v, w, lam
-        self.m = 7 * m + 6  # A_i, rho_i^2, b'_i, g', Q d
-        self.neq = 12 + m
-
-    @property
-    def degrees(self) -> tuple:
-        """Every equation has degree 2 in x (as the sympy family says; tests/test_dgp_kernels.py checks it)."""
-        return (2,) * self.neq
-
-    @property
-    def family(self):
-        """The sympy family, built on first use (building it takes ~0.25 s; the tracking does not need it)."""
-        if self._family is None:
-            self._family = taut_family(self.mm)
-        return self._family
-
-    def __getattr__(self, name):
-        if name.startswith("__") or name == "_family":
-            raise AttributeError(name)
-        return getattr(self.family, name)
-
-    def compiled_kernels(self):
-        """Numba evaluators and structured linear solve for the compiled tracker (:mod:`cdpr_algebra.dgp.kernels`)."""
-        from .kernels import taut_apply, taut_factor, taut_fj, taut_fjt
-
-        return taut_fj, taut_fjt, taut_factor, taut_apply
-
-    def compiled_residual_dd(self):
-        """The residual in double-double (:mod:`cdpr_algebra.generated.taut_residual_dd`) for the compiled tracker's
-        extended-precision Newton."""
-        from cdpr_algebra.generated.taut_residual_dd import taut_residual
-
-        return taut_residual
-
-    def chart_kernels(self):
-        """LU factor and apply of the Jacobian of this system homogenized on a chart (the projective retries and
-        endgame; :func:`cdpr_algebra.dgp.kernels.chart_factor`)."""
-        from .kernels import chart_apply, chart_factor
-
-        return chart_factor, chart_apply
-
-    def _eval(self, x, p, jac: bool, jacp: bool):
-        """F, dF/dx (``jac``), dF/dp (``jacp``) at the rows of x: the generated evaluators of
-        :mod:`cdpr_algebra.generated.taut_equations`, compiled and looped over the rows (:mod:`.kernels`)."""
-        from .kernels import taut_fj_batch, taut_jp_batch
-
-        x = np.asarray(x, dtype=complex)
-        if x.ndim == 1:
-            x = x[None, :]
-        N = len(x)
-        X = np.array(x, order="C")
-        # writable copies: a read-only array (a broadcast view) would compile the kernels a second time
-        P = np.array(np.broadcast_to(np.asarray(p, dtype=complex), (N, self.m)), order="C")
-        F = np.empty((N, self.neq), dtype=complex)
-        J = np.zeros((N if jac else 1, self.neq, self.n), dtype=complex)
-        taut_fj_batch(X, P, F, J, jac)
-        if not jacp:
-            return F, (J if jac else None), None
-        JP = np.zeros((N, self.neq, self.m), dtype=complex)
-        taut_jp_batch(X, P, JP)
-        return F, J, JP
-
-    def evaluate(self, x, p=None):
-        return self._eval(x, p, False, False)[0]
-
-    def evaluate_and_jacobian(self, x, p=None):
-        F, J, _ = self._eval(x, p, True, False)
-        return F, J
-
-    def evaluate_all(self, x, p=None):
-        return self._eval(x, p, True, True)
-
-    def evaluate_directional(self, x, p, dp):
-        """F, dF/dx and the derivative of F along the parameter direction dp.  Every equation is a polynomial
-        of degree <= 2 in the parameters (A, rho^2, b', g', Q d), so the central difference
-        (F(x; p + dp) - F(x; p - dp)) / 2 is that derivative exactly (up to rounding); cheaper than dF/dp."""
-        F, J, _ = self._eval(x, p, True, False)
-        p = np.asarray(p, dtype=complex)
-        dp = np.asarray(dp, dtype=complex)
-        Fp = self._eval(x, p + dp, False, False)[0]
-        Fm = self._eval(x, p - dp, False, False)[0]
-        return F, J, 0.5 * (Fp - Fm)
-
-
-_FAST: dict = {}
-
-
-def fast_family(m: int) -> FastTautSystem:
-    if m not in _FAST:
-        _FAST[m] = FastTautSystem(m)
-    return _FAST[m]
-
-
 def prune(robot, rho, cables) -> str | None:
     """Reason why the taut set ``cables`` (0-based) cannot hold an equilibrium, or None (see module doc)."""
     A, b = robot.base, robot.platform
@@ -682,8 +581,12 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
             failures[p.status] = failures.get(p.status, 0) + 1
     generic = len(_generic(m)[1])
     # complete only once the regular endpoints are certified (_with_endpoint_certificates)
+    retried = {}
+    for p in paths:
+        if p.retried:
+            retried[p.retried] = retried.get(p.retried, 0) + 1
     sub = DGPSubproblem(taut1, len(paths), finite, int(np.sum(real)), len(sols), time.perf_counter() - t0,
-                        outcomes=outcomes, failures=failures, complete=False, generic_count=generic)
+                        outcomes=outcomes, failures=failures, complete=False, generic_count=generic, retried=retried)
     regular = np.array([s.x for s in res.solutions if not s.singular]).reshape(-1, fam.n)
     return sub, sols, _world_coordinates(regular, m, c, L, Rw, cb, robot.load)
 

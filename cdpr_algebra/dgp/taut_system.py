@@ -1,0 +1,115 @@
+"""The taut-set equations of :mod:`cdpr_algebra.model.taut_equations` as the homotopy engine's system, with the
+compiled evaluators generated from them (:class:`FastTautSystem`, one per m: :func:`fast_family`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from cdpr_algebra.model.taut_equations import taut_family
+
+__all__ = ["FastTautSystem", "fast_family"]
+
+
+class FastTautSystem:
+    """:func:`cdpr_algebra.model.taut_equations.taut_family` (m) with compiled evaluators of F, dF/dx, dF/dp generated
+    from it (``derivations/derive_taut_equations.py``; checked against the sympy family's own evaluators in
+    tests/test_dgp.py).
+    Everything else (name, hash, equations, mpmath evaluators, used by the projective retries) is the
+    sympy family's."""
+
+    kernel_constants = None  # no constants beyond the parameters (answered here: asking the family builds it)
+
+    def __init__(self, m: int):
+        self._family = None
+        self.mm = m
+        self.n = 12 + m  # p, u, v, w, lam
+        self.m = 7 * m + 6  # A_i, rho_i^2, b'_i, g', Q d
+        self.neq = 12 + m
+
+    @property
+    def degrees(self) -> tuple:
+        """Every equation has degree 2 in x (as the sympy family says; tests/test_dgp_kernels.py checks it)."""
+        return (2,) * self.neq
+
+    @property
+    def family(self):
+        """The sympy family, built on first use (building it takes ~0.25 s; the tracking does not need it)."""
+        if self._family is None:
+            self._family = taut_family(self.mm)
+        return self._family
+
+    def __getattr__(self, name):
+        if name.startswith("__") or name == "_family":
+            raise AttributeError(name)
+        return getattr(self.family, name)
+
+    def compiled_kernels(self):
+        """Numba evaluators and structured linear solve for the compiled tracker (:mod:`cdpr_algebra.dgp.kernels`)."""
+        from .kernels import taut_apply, taut_factor, taut_fj, taut_fjt
+
+        return taut_fj, taut_fjt, taut_factor, taut_apply
+
+    def compiled_residual_dd(self):
+        """The residual in double-double (:mod:`cdpr_algebra.generated.taut_residual_dd`) for the compiled tracker's
+        extended-precision Newton."""
+        from cdpr_algebra.generated.taut_residual_dd import taut_residual
+
+        return taut_residual
+
+    def chart_kernels(self):
+        """LU factor and apply of the Jacobian of this system homogenized on a chart (the projective retries and
+        endgame; :func:`cdpr_algebra.dgp.kernels.chart_factor`)."""
+        from .kernels import chart_apply, chart_factor
+
+        return chart_factor, chart_apply
+
+    def _eval(self, x, p, jac: bool, jacp: bool):
+        """F, dF/dx (``jac``), dF/dp (``jacp``) at the rows of x: the generated evaluators of
+        :mod:`cdpr_algebra.generated.taut_equations`, compiled and looped over the rows (:mod:`.kernels`)."""
+        from .kernels import taut_fj_batch, taut_jp_batch
+
+        x = np.asarray(x, dtype=complex)
+        if x.ndim == 1:
+            x = x[None, :]
+        N = len(x)
+        X = np.array(x, order="C")
+        # writable copies: a read-only array (a broadcast view) would compile the kernels a second time
+        P = np.array(np.broadcast_to(np.asarray(p, dtype=complex), (N, self.m)), order="C")
+        F = np.empty((N, self.neq), dtype=complex)
+        J = np.zeros((N if jac else 1, self.neq, self.n), dtype=complex)
+        taut_fj_batch(X, P, F, J, jac)
+        if not jacp:
+            return F, (J if jac else None), None
+        JP = np.zeros((N, self.neq, self.m), dtype=complex)
+        taut_jp_batch(X, P, JP)
+        return F, J, JP
+
+    def evaluate(self, x, p=None):
+        return self._eval(x, p, False, False)[0]
+
+    def evaluate_and_jacobian(self, x, p=None):
+        F, J, _ = self._eval(x, p, True, False)
+        return F, J
+
+    def evaluate_all(self, x, p=None):
+        return self._eval(x, p, True, True)
+
+    def evaluate_directional(self, x, p, dp):
+        """F, dF/dx and the derivative of F along the parameter direction dp.  Every equation is a polynomial
+        of degree <= 2 in the parameters (A, rho^2, b', g', Q d), so the central difference
+        (F(x; p + dp) - F(x; p - dp)) / 2 is that derivative exactly (up to rounding); cheaper than dF/dp."""
+        F, J, _ = self._eval(x, p, True, False)
+        p = np.asarray(p, dtype=complex)
+        dp = np.asarray(dp, dtype=complex)
+        Fp = self._eval(x, p + dp, False, False)[0]
+        Fm = self._eval(x, p - dp, False, False)[0]
+        return F, J, 0.5 * (Fp - Fm)
+
+
+_FAST: dict = {}
+
+
+def fast_family(m: int) -> FastTautSystem:
+    if m not in _FAST:
+        _FAST[m] = FastTautSystem(m)
+    return _FAST[m]
