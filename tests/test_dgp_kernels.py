@@ -137,7 +137,7 @@ def test_homogenized_eval_reuses_the_origin_only_for_the_same_parameters():
     its last call: calls that change p, dp and the kind of evaluation in one workspace give, call by call, exactly
     what a fresh workspace gives, F and J equal the numpy twin (HomogenizedQuadratic), and a call with the same
     parameters does take the origin from the workspace (a value planted there shows in its result)."""
-    from cdpr_algebra.homotopy.compiled import homogenized_eval, homogenized_workspace
+    from cdpr_algebra.homotopy.compiled import homogenized_eval_typed as homogenized_eval, homogenized_workspace
     from cdpr_algebra.homotopy.projective import HomogenizedQuadratic
 
     m = 3

@@ -41,7 +41,7 @@ from .double_double import RESIDUAL_SIG, cc_add, cc_mul, cc_sub, dd_parameters, 
 
 __all__ = ["available", "track_kernel", "track_segment_compiled", "residual_dd", "lu_factor_sparse_lead",
            "lu_apply_sparse_lead",
-           "dense_factor", "dense_apply", "solve_with", "homogenized_eval", "homogenized_workspace", "FACTOR_SIG",
+           "dense_factor", "dense_apply", "solve_with", "homogenized_eval", "homogenized_eval_typed", "homogenized_workspace", "FACTOR_SIG",
            "APPLY_SIG"]
 
 # status codes of the kernel (mapped to the strings of .results by the caller)
@@ -207,6 +207,15 @@ def homogenized_eval(fj, fjt, y, p, dp, F, J, Ht, with_ht, pa, dpa, V, M, known)
     F[n] = acc
     if with_ht:
         Ht[n] = 0.0
+
+
+@nb.njit(nbt.void(_FJ, _FJT, _C1, _C1, _C1, _C1, _C2, _C1, nbt.boolean, _C1, _C1, _C2, nbt.complex128[:, :, ::1], _I1),
+         cache=True, error_model="numpy")
+def homogenized_eval_typed(fj, fjt, y, p, dp, F, J, Ht, with_ht, pa, dpa, V, M, known):
+    """:func:`homogenized_eval` with the system's kernels as first-class functions of the tracker's signatures, for
+    calls from Python (checks and tests): compiled and cached once, as inside :func:`track_kernel` (called with the
+    kernels' dispatchers, the untyped function compiles a new specialization, about 100 s, on every run)."""
+    homogenized_eval(fj, fjt, y, p, dp, F, J, Ht, with_ht, pa, dpa, V, M, known)
 
 
 @nb.njit(cache=True)
