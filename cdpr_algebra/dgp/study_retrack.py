@@ -111,9 +111,11 @@ def fast_study_family(m: int) -> FastStudySystem:
 
 
 def warm_study_kernels() -> None:
-    """Compile (or load from numba's cache) the batched Study evaluator: ``cdpr warm`` calls it, since robots without
-    failed paths never reach it (its single-point kernels compile when :mod:`.kernels` is imported)."""
+    """Compile (or load from numba's cache) the batched Study evaluator and the double-double residual: ``cdpr warm``
+    calls it, since robots without failed paths never reach them (the single-point kernels compile when
+    :mod:`.kernels` is imported)."""
     sys_ = fast_study_family(2)
+    sys_.compiled_residual_dd()  # compiled on import (explicit signature)
     x = np.ones(sys_.n, dtype=complex)
     p = np.ones(sys_.m, dtype=complex)
     sys_.evaluate_directional(x, p, p)
