@@ -32,7 +32,7 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "derivations"))
 
 from codegen import HEADER, write  # noqa: E402
-from derive_taut_equations import _block, _nonzero, _numba_module, _split_block  # noqa: E402
+from derive_taut_equations import _block, _double_double_text, _nonzero, _split_block  # noqa: E402
 from cdpr_algebra.model.study_equations import quaternion_product, study_family  # noqa: E402
 
 TARGET = "cdpr_algebra/generated/study_equations.py"
@@ -144,7 +144,7 @@ def generate() -> dict[str, str]:
            "(see its docstring).  Plain arithmetic and indexing: compiled by numba.\n"
            '"""\n')
     return {TARGET: HEADER.format(script=Path(__file__).name) + doc + "\n".join(L + Fo) + "\n",
-            DD_TARGET: _double_double_text("\n".join(Fo) + "\n")}
+            DD_TARGET: _double_double_text("\n".join(Fo) + "\n", _DD_DOC, ("study_residual",))}
 
 
 def _prologue(signature: str, doc: list[str]) -> list[str]:
@@ -170,23 +170,11 @@ def _cable_loop(cpar) -> list[str]:
     return lines
 
 
-def _double_double_text(source: str) -> str:
-    """study_residual rewritten over complex double-double numbers and compiled by numba with the residual signature
-    of :mod:`cdpr_algebra.homotopy.double_double` (as ``derive_taut_equations.py`` does for the taut residual)."""
-    from cdpr_algebra.intervals.codegen import pair_arithmetic_source
-
-    from cdpr_algebra.homotopy.double_double import OPERATIONS
-    from cdpr_algebra.intervals.complex_kernels import OPERATIONS as INTERVAL_OPERATIONS
-
-    doc = ("The residual F of the DGP equations per taut set in Study parameters in double-double: ``study_residual``\n"
+_DD_DOC = ("The residual F of the DGP equations per taut set in Study parameters in double-double: ``study_residual``\n"
            "of :mod:`cdpr_algebra.generated.study_equations` rewritten by\n"
            ":func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source` over complex double-double numbers (values\n"
            "are (re hi, re lo, im hi, im lo); x (8 + m, 4), p (7 m + 10, 4), F (8 + m, 4)), compiled by numba for the\n"
            "extended-precision Newton residual of the compiled tracker (:mod:`cdpr_algebra.homotopy.compiled`).\n")
-    moves = [op for op in INTERVAL_OPERATIONS if op not in OPERATIONS]
-    return _numba_module(doc, pair_arithmetic_source(source, flags=(), real=(), constant_second=0.0), "RESIDUAL_SIG",
-                         [("cdpr_algebra.homotopy.double_double", OPERATIONS),
-                          ("cdpr_algebra.intervals.complex_kernels", moves)], ("study_residual",))
 
 
 if __name__ == "__main__":

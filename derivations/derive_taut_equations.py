@@ -266,17 +266,18 @@ def _interval_text(source: str) -> str:
                          [("cdpr_algebra.intervals.complex_kernels", OPERATIONS)], ("taut_equations", "taut_residual"))
 
 
-def _double_double_text(source: str) -> str:
-    """taut_residual rewritten over complex double-double numbers (every array complex: the tracker's parameters
-    p(t) are complex; :func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source`, constants (v, 0)), compiled by
-    numba with the residual signature of :mod:`cdpr_algebra.homotopy.double_double`; its loads and stores are the
-    interval kernels' (the same array layout: their operations that double-double arithmetic does not define)."""
+def _double_double_text(source: str, doc: str | None = None, names=("taut_residual",)) -> str:
+    """The residual functions ``names`` of ``source`` (taut_residual unless told) rewritten over complex double-double
+    numbers (every array complex: the tracker's parameters p(t) are complex;
+    :func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source`, constants (v, 0)), compiled by numba with the
+    residual signature of :mod:`cdpr_algebra.homotopy.double_double`; its loads and stores are the interval kernels'
+    (the same array layout: their operations that double-double arithmetic does not define)."""
     from cdpr_algebra.intervals.codegen import pair_arithmetic_source
 
     from cdpr_algebra.homotopy.double_double import OPERATIONS
     from cdpr_algebra.intervals.complex_kernels import OPERATIONS as INTERVAL_OPERATIONS
 
-    doc = ("The residual F of the DGP equations per taut set in double-double: ``taut_residual`` of\n"
+    doc = doc or ("The residual F of the DGP equations per taut set in double-double: ``taut_residual`` of\n"
            ":mod:`cdpr_algebra.generated.taut_equations` rewritten by\n"
            ":func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source` over complex double-double numbers (values\n"
            "are (re hi, re lo, im hi, im lo); x (12 + m, 4), p (7 m + 6, 4), F (12 + m, 4); operations of\n"
@@ -286,7 +287,7 @@ def _double_double_text(source: str) -> str:
     moves = [op for op in INTERVAL_OPERATIONS if op not in OPERATIONS]
     return _numba_module(doc, pair_arithmetic_source(source, flags=(), real=(), constant_second=0.0), "RESIDUAL_SIG",
                          [("cdpr_algebra.homotopy.double_double", OPERATIONS),
-                          ("cdpr_algebra.intervals.complex_kernels", moves)], ("taut_residual",))
+                          ("cdpr_algebra.intervals.complex_kernels", moves)], tuple(names))
 
 
 if __name__ == "__main__":

@@ -8,30 +8,12 @@ from cdpr_algebra.model.taut_equations import taut_family
 from cdpr_algebra.dgp.kernels import taut_fj, taut_fjt
 from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
 from cdpr_algebra.homotopy.tracker import TrackerOptions, track_segment
+from kernel_checks import assert_kernels_equal_family
 
 
 @pytest.mark.parametrize("m", [2, 3, 4, 5, 6])
 def test_kernels_equal_sympy_family(m):
-    fam = taut_family(m)
-    rng = np.random.default_rng(m)
-    for _ in range(3):
-        x = rng.normal(size=fam.n) + 1j * rng.normal(size=fam.n)
-        p = rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m)
-        dp = rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m)
-        F0, J0, JP0 = fam.evaluate_all(x[None], p)
-        F = np.empty(fam.neq, complex)
-        J = np.zeros((fam.neq, fam.n), complex)
-        Ht = np.empty(fam.neq, complex)
-        taut_fjt(x, p, dp, F, J, Ht)
-        scale = 1 + np.abs(F0).max() + np.abs(J0).max()
-        assert np.abs(F - F0[0]).max() <= 1e-13 * scale
-        assert np.abs(J - J0[0]).max() <= 1e-13 * scale
-        assert np.abs(Ht - JP0[0] @ dp).max() <= 1e-13 * scale * (1 + np.abs(dp).max())
-        # fj writes the same F and J (the pattern of J is complete: a stale J is overwritten)
-        F2 = np.empty(fam.neq, complex)
-        J2 = J.copy()
-        taut_fj(x, p, F2, J2)
-        assert np.array_equal(F2, F) and np.array_equal(J2, J)
+    assert_kernels_equal_family(taut_family(m), taut_fj, taut_fjt, np.random.default_rng(m), 3)
 
 
 class _NumpyOnly:

@@ -13,31 +13,14 @@ from cdpr_algebra.dgp.study_retrack import retrack_failed_in_study, study_chart
 from cdpr_algebra.homotopy.results import STEP_TOO_SMALL, SUCCESS
 from cdpr_algebra.model.study_equations import from_study, rotation_quaternions, study_family, to_study
 from cdpr_algebra.model.taut_equations import taut_family
+from kernel_checks import assert_kernels_equal_family
 
 ROOT = __import__("pathlib").Path(__file__).resolve().parent.parent
 
 
 @pytest.mark.parametrize("m", [2, 3, 4, 5, 6])
 def test_study_kernels_equal_sympy_family(m):
-    fam = study_family(m)
-    rng = np.random.default_rng(10 + m)
-    for _ in range(2):
-        x = rng.normal(size=fam.n) + 1j * rng.normal(size=fam.n)
-        p = rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m)
-        dp = rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m)
-        F0, J0, JP0 = fam.evaluate_all(x[None], p)
-        F = np.empty(fam.neq, complex)
-        J = np.zeros((fam.neq, fam.n), complex)
-        Ht = np.empty(fam.neq, complex)
-        study_fjt(x, p, dp, F, J, Ht)
-        scale = 1 + np.abs(F0).max() + np.abs(J0).max()
-        assert np.abs(F - F0[0]).max() <= 1e-13 * scale
-        assert np.abs(J - J0[0]).max() <= 1e-13 * scale
-        assert np.abs(Ht - JP0[0] @ dp).max() <= 1e-13 * scale * (1 + np.abs(dp).max())
-        F2 = np.empty(fam.neq, complex)
-        J2 = J.copy()
-        study_fj(x, p, F2, J2)
-        assert np.array_equal(F2, F) and np.array_equal(J2, J)
+    assert_kernels_equal_family(study_family(m), study_fj, study_fjt, np.random.default_rng(10 + m), 2)
 
 
 def test_quaternions_of_rotations():

@@ -26,6 +26,8 @@ import numpy as np
 from cdpr_algebra.homotopy.results import FAILURES, SUCCESS
 from cdpr_algebra.model.study_equations import STUDY_CHART_PARAMETERS, from_study, study_family, to_study
 
+from .taut_system import LazyFamilySystem
+
 __all__ = ["FastStudySystem", "fast_study_family", "retrack_failed_in_study", "warm_study_kernels", "RESIDUAL_TOL"]
 
 RESIDUAL_TOL = 1e-8  # residual of the mapped-back endpoint in the taut system after Newton (endgame.refine's measure)
@@ -34,16 +36,14 @@ EXTENDED = True  # Newton residuals in double-double where double precision stal
 CHART_SEED = 104729  # the chart c of e: drawn from this seed (any generic complex vector serves)
 
 
-class FastStudySystem:
+class FastStudySystem(LazyFamilySystem):
     """:func:`cdpr_algebra.model.study_equations.study_family` (m) with the compiled evaluator generated from it
-    (``derivations/derive_study_equations.py``); the sympy family (name, hash, equations, mpmath evaluators) is
-    built only when asked for."""
+    (``derivations/derive_study_equations.py``); the sympy family is built only when asked for."""
 
-    kernel_constants = None
+    family_builder = staticmethod(study_family)
 
     def __init__(self, m: int):
-        self._family = None
-        self.mm = m
+        super().__init__(m)
         self.n = 8 + m
         self.m = 7 * m + 6 + STUDY_CHART_PARAMETERS
         self.neq = 8 + m
@@ -51,17 +51,6 @@ class FastStudySystem:
     @property
     def degrees(self) -> tuple:
         return (1, 2) + (2,) * self.mm + (3,) * 6
-
-    @property
-    def family(self):
-        if self._family is None:
-            self._family = study_family(self.mm)
-        return self._family
-
-    def __getattr__(self, name):
-        if name.startswith("__") or name == "_family":
-            raise AttributeError(name)
-        return getattr(self.family, name)
 
     def compiled_kernels(self):
         """Evaluators for the compiled tracker (:mod:`cdpr_algebra.dgp.kernels`), dense LU."""

@@ -7,21 +7,44 @@ import numpy as np
 
 from cdpr_algebra.model.taut_equations import taut_family
 
-__all__ = ["FastTautSystem", "fast_family"]
+__all__ = ["LazyFamilySystem", "FastTautSystem", "fast_family"]
 
 
-class FastTautSystem:
+class LazyFamilySystem:
+    """A system whose numeric evaluators are compiled code and whose sympy family (name, hash, equations, mpmath
+    evaluators) is built only when something asks for it (``family_builder(m)``: building one takes ~0.25 s per m,
+    and tracking does not need it)."""
+
+    kernel_constants = None  # no constants beyond the parameters (answered here: asking the family builds it)
+    family_builder = None
+
+    def __init__(self, m: int):
+        self._family = None
+        self.mm = m
+
+    @property
+    def family(self):
+        if self._family is None:
+            self._family = type(self).family_builder(self.mm)
+        return self._family
+
+    def __getattr__(self, name):
+        if name.startswith("__") or name == "_family":
+            raise AttributeError(name)
+        return getattr(self.family, name)
+
+
+class FastTautSystem(LazyFamilySystem):
     """:func:`cdpr_algebra.model.taut_equations.taut_family` (m) with compiled evaluators of F, dF/dx, dF/dp generated
     from it (``derivations/derive_taut_equations.py``; checked against the sympy family's own evaluators in
     tests/test_dgp.py).
     Everything else (name, hash, equations, mpmath evaluators, used by the projective retries) is the
     sympy family's."""
 
-    kernel_constants = None  # no constants beyond the parameters (answered here: asking the family builds it)
+    family_builder = staticmethod(taut_family)
 
     def __init__(self, m: int):
-        self._family = None
-        self.mm = m
+        super().__init__(m)
         self.n = 12 + m  # p, u, v, w, lam
         self.m = 7 * m + 6  # A_i, rho_i^2, b'_i, g', Q d
         self.neq = 12 + m
@@ -30,18 +53,6 @@ class FastTautSystem:
     def degrees(self) -> tuple:
         """Every equation has degree 2 in x (as the sympy family says; tests/test_dgp_kernels.py checks it)."""
         return (2,) * self.neq
-
-    @property
-    def family(self):
-        """The sympy family, built on first use (building it takes ~0.25 s; the tracking does not need it)."""
-        if self._family is None:
-            self._family = taut_family(self.mm)
-        return self._family
-
-    def __getattr__(self, name):
-        if name.startswith("__") or name == "_family":
-            raise AttributeError(name)
-        return getattr(self.family, name)
 
     def compiled_kernels(self):
         """Numba evaluators and structured linear solve for the compiled tracker (:mod:`cdpr_algebra.dgp.kernels`)."""
