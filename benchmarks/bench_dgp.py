@@ -115,7 +115,9 @@ PHASES = (("phase 1, t = 1 -> 0.1", "phase1"), ("re-tracks in the chart, t = 1 -
           ("finish t = 0.1 -> 0", "to0"), ("finish in the chart", "to0_chart"),
           ("endgame samples", "samples"), ("endgame samples in the chart", "samples_chart"),
           ("Cauchy loops", "loops"), ("Cauchy loops in the chart", "loops_chart"),
-          ("detours around phase-1 failures", "detour"), ("detours in the chart", "detour_chart"))
+          ("detours around phase-1 failures", "detour"), ("detours in the chart", "detour_chart"),
+          ("failed paths in Study parameters, t = 1 -> 0.1", "phase1_study"), ("finish in Study parameters", "to0_study"),
+          ("endgame samples in Study parameters", "samples_study"), ("Cauchy loops in Study parameters", "loops_study"))
 
 
 TE = EndgameOptions().endgame_start
@@ -125,12 +127,13 @@ class _PhaseCounter:
     """Seconds, steps and calls of the compiled tracker per phase of the pipeline, told apart by the segment's ends
     (t_a = 1: phase 1, the first leg of a detour included; t_b = 0: the finish; |t_a| = |t_b|: a Cauchy loop chord;
     other complex ends, or a real segment that ends at the endgame start: a detour of the homotopy's detour retry;
-    else an endgame sample) and by whether the homotopy is in a projective chart: wraps
+    else an endgame sample) and by whether the homotopy is in a projective chart or in Study parameters: wraps
     ``compiled.track_segment_compiled`` while in use."""
 
     def __enter__(self):
         import numpy as np
 
+        from cdpr_algebra.dgp.study_retrack import FastStudySystem
         from cdpr_algebra.homotopy import compiled
 
         self.acc = {}
@@ -145,6 +148,8 @@ class _PhaseCounter:
                     else "detour" if ta.imag or tb.imag or (tb == TE and ta.real > TE) else "samples")
             if getattr(hom, "chart", None) is not None:
                 kind += "_chart"
+            elif isinstance(getattr(hom, "system", None), FastStudySystem):
+                kind += "_study"  # dgp.study_retrack
             sec, steps, calls = self.acc.get(kind, (0.0, 0, 0))
             self.acc[kind] = (sec + time.perf_counter() - t0, steps + int(r.steps.sum()), calls + 1)
             return r
