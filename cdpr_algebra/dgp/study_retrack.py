@@ -7,8 +7,9 @@ are ordinary points with small N = e . e.  :func:`retrack_failed_in_study` takes
 Study coordinates and tracks it again along the same parameter path (the same segment, or the same gamma: the
 homotopy is drawn from the same seed), so it follows the same solution curve in other coordinates and ends on that
 path's own endpoint.  A path whose new run ends regular is kept when its endpoint, mapped back, solves the taut
-system to ``RESIDUAL_TOL`` and is distinct from every other path's regular endpoint (a coincidence means a jump of one
-of them: the path stays failed, nothing is merged); every other path keeps its outcome.  Its endpoint is then
+system to ``RESIDUAL_TOL`` and is distinct from every other path's regular endpoint (``endgame.coincides_with_any`` at
+the endgame's cluster tolerance, the detour retry's test; a coincidence means a jump of one of them: the path stays
+failed, nothing is merged); every other path keeps its outcome.  Its endpoint is then
 certified like any other (the DGP's endpoint certificates, in the taut system).
 
 Measured (fifteenth session, Berti et al. 2016 Test 3, taut set {2, 3, 4, 5}, 13 failed paths in (p, u, v, w, lam)):
@@ -31,7 +32,6 @@ from .taut_system import LazyFamilySystem
 __all__ = ["FastStudySystem", "fast_study_family", "retrack_failed_in_study", "warm_study_kernels", "RESIDUAL_TOL"]
 
 RESIDUAL_TOL = 1e-8  # residual of the mapped-back endpoint in the taut system after Newton (endgame.refine's measure)
-DISTINCT_TOL = 1e-6  # relative distance under which two regular endpoints are one point (the endgame's cluster_tol)
 EXTENDED = True  # Newton residuals in double-double where double precision stalls (TrackerOptions.extended_residual)
 CHART_SEED = 104729  # the chart c of e: drawn from this seed (any generic complex vector serves)
 
@@ -133,7 +133,7 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     """``res`` (the :class:`.homotopy.results.SolveResult` of the taut system ``system`` from ``start_solutions`` at
     ``start_parameters`` to ``target``, run with ``seed`` and ``gamma``) with its failed paths tracked again in Study
     parameters (module doc); rescued paths have ``retried="study"``.  Returns (result, number rescued)."""
-    from cdpr_algebra.homotopy.endgame import refine
+    from cdpr_algebra.homotopy.endgame import coincides_with_any, refine
     from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
     from cdpr_algebra.homotopy.solve import group_solutions, solve_parameter_homotopy
 
@@ -148,32 +148,30 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     sres = solve_parameter_homotopy(fast_study_family(m), np.concatenate([start_parameters, chart]), Y1,
                                     np.concatenate([np.asarray(target, dtype=complex), chart]), seed=seed,
                                     options=opts, gamma=gamma, retries=0)
+    ok = [j for j, q in enumerate(sres.track.paths) if q.status == SUCCESS]
+    X0 = from_study(np.array([sres.track.paths[j].endpoint for j in ok]).reshape(-1, 8 + m), m)
+    finite = np.all(np.isfinite(X0), axis=1)
+    ok, X0 = [j for j, f in zip(ok, finite) if f], X0[finite]
+    if not ok:
+        return res, 0
+    # Newton in the taut system (residuals in double-double where the system offers them), as every endpoint
+    X, upd, residual, cond, quad = refine(ParameterHomotopy(system, start_parameters, target), X0, 0.0)  # t = 0: target
     regular = [p.endpoint for p in paths if p.status == SUCCESS]
-    at_target = ParameterHomotopy(system, start_parameters, target)  # t = 0 is the target system
     rescued = 0
-    for j, sp_ in enumerate(sres.track.paths):
-        if sp_.status != SUCCESS:
+    for k, j in enumerate(ok):
+        x = X[k]
+        if not (quad[k] and residual[k] <= RESIDUAL_TOL and np.all(np.isfinite(x))):
             continue
-        x0 = from_study(sp_.endpoint, m)
-        if not np.all(np.isfinite(x0)):
-            continue
-        # Newton in the taut system (residuals in double-double where the system offers them), as every endpoint
-        x, upd, residual, cond, quad = refine(at_target, x0, 0.0)
-        x = x[0]
-        if not (quad[0] and residual[0] <= RESIDUAL_TOL and np.all(np.isfinite(x))):
-            continue
-        if any(np.max(np.abs(x - y)) <= DISTINCT_TOL * (1.0 + max(np.max(np.abs(x)), np.max(np.abs(y))))
-               for y in regular):
+        if coincides_with_any(regular, x, opts.endgame.cluster_tol):  # the detour retry's test of a new point
             continue
         i = failed[j]
-        paths[i] = replace(paths[i], status=SUCCESS, endpoint=x, t=0j, residual=float(residual[0]),
-                           condition=float(cond[0]), accuracy=float(upd[0]), steps=paths[i].steps + sp_.steps,
-                           winding_number=1, retried="study")
+        paths[i] = replace(paths[i], status=SUCCESS, endpoint=x, t=0j, residual=float(residual[k]),
+                           condition=float(cond[k]), accuracy=float(upd[k]),
+                           steps=paths[i].steps + sres.track.paths[j].steps, winding_number=1, retried="study")
         regular.append(x)
         rescued += 1
     if not rescued:
         return res, 0
     track = replace(res.track, paths=tuple(paths))
-    o = options if options is not None else opts
-    sols = group_solutions(track, o.duplicate_tol, o.endgame.cluster_tol)
+    sols = group_solutions(track, opts.duplicate_tol, opts.endgame.cluster_tol)
     return replace(res, track=track, solutions=sols), rescued
