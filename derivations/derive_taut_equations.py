@@ -75,11 +75,20 @@ def _template():
 
 def _check(rot, length, glob, part):
     """The template summed over the cables is the family, for every m."""
+    family_names = ["px", "py", "pz", "ux", "uy", "uz", "vx", "vy", "vz", "wx", "wy", "wz", "gx", "gy", "gz",
+                    "fx", "fy", "fz"]
+    check_template(taut_family, rot, length, glob, part, dict(zip(POSE + GLOBAL_PARAMS, family_names)))
+
+
+def check_template(family, head, length, glob, part, names):
+    """For m = 2..6: ``head`` (the cable-free rows), one ``length`` row per cable and the 6 statics rows (``glob``
+    plus ``part`` summed over the cables) are exactly the rows of ``family(m)``.  ``names``: {template symbol: family
+    symbol} of the pose unknowns and cable-free parameters; the per-cable symbols (CABLE_PARAMS, lam) are the
+    family's A{i}x .. b{i}z, rho2_{i}, lam{i} (as in both DGP families)."""
     for m in range(2, 7):
-        fam = taut_family(m)
+        fam = family(m)
         S = {str(s): s for s in list(fam.variables) + list(fam.parameters)}
-        base = {sp.Symbol(v): S[k] for k, v in zip(["px", "py", "pz", "ux", "uy", "uz", "vx", "vy", "vz", "wx", "wy",
-                                                     "wz", "gx", "gy", "gz", "fx", "fy", "fz"], POSE + GLOBAL_PARAMS)}
+        base = {sp.Symbol(v): S[k] for v, k in names.items()}
 
         def cable(i):
             d = dict(base)
@@ -88,10 +97,7 @@ def _check(rot, length, glob, part):
             d[sp.Symbol("lam")] = S[f"lam{i}"]
             return d
 
-        base.update({sp.Symbol(v): S[k] for k, v in zip(["px", "py", "pz", "ux", "uy", "uz", "vx", "vy", "vz", "wx",
-                                                          "wy", "wz"], POSE)})
-
-        built = [e.xreplace(base) for e in rot]
+        built = [e.xreplace(base) for e in head]
         built += [length.xreplace(cable(i)) for i in range(1, m + 1)]
         built += [glob[k].xreplace(base) + sum(part[k].xreplace(cable(i)) for i in range(1, m + 1)) for k in range(6)]
         bad = [k for k, (a, b) in enumerate(zip(built, fam.equations)) if sp.expand(a - b) != 0]

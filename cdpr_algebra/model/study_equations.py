@@ -28,6 +28,8 @@ import numpy as np
 
 from cdpr_algebra.homotopy.systems import PolynomialSystem
 
+from .taut_equations import _cross
+
 __all__ = ["study_family", "quaternion_product", "to_study", "from_study", "rotation_quaternions",
            "STUDY_CHART_PARAMETERS"]
 
@@ -47,10 +49,6 @@ def quaternion_product(a, b):
 
 def _conj(a):
     return [a[0], -a[1], -a[2], -a[3]]
-
-
-def _cross(a, b):
-    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 
 
 def study_family(m: int) -> PolynomialSystem:
