@@ -85,6 +85,7 @@ valid cable configuration of a robot with more than 6 cables at the cable length
 from __future__ import annotations
 
 import itertools
+from collections import Counter
 import os
 import time
 from concurrent.futures import ThreadPoolExecutor, as_completed
@@ -575,16 +576,10 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
         sols.append(DGPSolution(taut1, p, R, tau, cls))
     paths = res.track.paths
     outcomes = outcome_counts(paths)
-    failures = {}
-    for p in paths:
-        if p.status in FAILURES:
-            failures[p.status] = failures.get(p.status, 0) + 1
+    failures = dict(Counter(p.status for p in paths if p.status in FAILURES))
+    retried = dict(Counter(p.retried for p in paths if p.retried))  # paths per kind of retry
     generic = len(_generic(m)[1])
     # complete only once the regular endpoints are certified (_with_endpoint_certificates)
-    retried = {}
-    for p in paths:
-        if p.retried:
-            retried[p.retried] = retried.get(p.retried, 0) + 1
     sub = DGPSubproblem(taut1, len(paths), finite, int(np.sum(real)), len(sols), time.perf_counter() - t0,
                         outcomes=outcomes, failures=failures, complete=False, generic_count=generic, retried=retried)
     regular = np.array([s.x for s in res.solutions if not s.singular]).reshape(-1, fam.n)
