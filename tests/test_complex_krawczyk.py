@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from cdpr_algebra.intervals.complex_krawczyk import certify_complex_roots, overlapping
+from cdpr_algebra.model.taut_equations import to_cable_frame
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -157,7 +158,7 @@ def test_dgp_roots_proven_in_balls_are_enclosed_to_double_precision():
                             (Z.shape[1],))
     frame = EQ._cable_frame(robot)  # certify_endpoints works in the cable frame
     out = EQ._retry_in_balls(robot, rho, np.repeat(np.array(cables)[None], len(bad), axis=0),
-                             EQ._in_frame(Z[bad], frame), scale, boxes, np.ones(len(bad), bool), frame)
+                             to_cable_frame(Z[bad], frame), scale, boxes, np.ones(len(bad), bool), frame)
     assert out.proven.all()
     size = np.maximum(np.abs(np.hstack([out.center.real, out.center.imag])), np.hstack([scale, scale]))
     assert ((out.hi - out.lo) / size).max() <= 1e-15

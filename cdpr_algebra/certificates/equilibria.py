@@ -52,7 +52,7 @@ import numpy as np
 from flint import arb, arb_mat
 
 from cdpr_algebra.generated.taut_equations import taut_equations, taut_residual
-from cdpr_algebra.model.taut_equations import encode
+from cdpr_algebra.model.taut_equations import encode, to_cable_frame
 from cdpr_algebra.intervals.balls import bounds, krawczyk_certify, sign, symmetric_inertias
 from cdpr_algebra.report.jsonable import jsonable
 
@@ -437,7 +437,7 @@ def _taut_problem(robot, lengths, cables, position, rotation, tensions):
                          f"{tensions.shape} tensions")
     frame = _cable_frame(robot)
     R0 = np.asarray(rotation, float)
-    x0 = _in_frame(encode(np.asarray(position, float), R0, tensions / rho[taut])[None], frame)[0]
+    x0 = to_cable_frame(encode(np.asarray(position, float), R0, tensions / rho[taut])[None], frame)[0]
     if m >= 2:
         def make_system(num):
             A, b, g, f = _robot_data(robot, taut, num, frame=frame)
@@ -548,7 +548,7 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
     rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
     rows = np.concatenate([np.repeat(np.asarray(c)[None], len(Z), axis=0) for c, Z in groups]).reshape(-1, m)
     frame = _cable_frame(robot)
-    Z = _in_frame(np.concatenate([Z for _, Z in groups]).reshape(-1, 12 + m), frame)
+    Z = to_cable_frame(np.concatenate([Z for _, Z in groups]).reshape(-1, 12 + m), frame)
     f_float = [robot.load * float(c) for c in robot.load_direction]
     f_iv = [Interval.point(robot.load) * float(c) for c in robot.load_direction]
     constants = {iv: _frame_constants(robot, rows, frame, iv) for iv in (False, True)}
@@ -583,15 +583,6 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
         over = np.zeros(len(Zg), bool)
         over[bg.proven] = overlapping(bg.lo[bg.proven], bg.hi[bg.proven])
         out.append((bg, over))
-    return out
-
-
-def _in_frame(Z, frame):
-    """Roots (N, 12 + m) in world coordinates (p, u, v, w, lam) taken to the frame (c, cb) of :func:`_cable_frame`:
-    p' = p + R cb - c, R = [u v w]."""
-    c, cb = frame
-    out = np.array(Z, copy=True)
-    out[:, :3] = Z[:, :3] + Z[:, 3:6] * cb[0] + Z[:, 6:9] * cb[1] + Z[:, 9:12] * cb[2] - c
     return out
 
 

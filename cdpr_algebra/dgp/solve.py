@@ -94,7 +94,7 @@ from pathlib import Path
 
 import numpy as np
 
-from cdpr_algebra.model.taut_equations import decode
+from cdpr_algebra.model.taut_equations import decode, from_cable_frame, to_cable_frame
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .one_cable import one_cable_equilibria
 from .study_retrack import retrack_failed_in_study
@@ -589,17 +589,16 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
 def _world_coordinates(X, m, c, L, Rw, cb, Q):
     """Roots (p^, u^, v^, w^, lam^) of the normalized problem (complex rows) -> (p, u, v, w, lam) of the robot:
     columns of R = Rw^T R^, p = c + L Rw^T p^ - R cb, lam = Q lam^ / L (see :func:`_normalized`)."""
-    u, v, w = X[:, 3:6] @ Rw, X[:, 6:9] @ Rw, X[:, 9:12] @ Rw
-    p = c + L * (X[:, 0:3] @ Rw) - (cb[0] * u + cb[1] * v + cb[2] * w)
-    return np.hstack([p, u, v, w, Q * X[:, 12:12 + m] / L])
+    Y = np.hstack([L * (X[:, 0:3] @ Rw), X[:, 3:6] @ Rw, X[:, 6:9] @ Rw, X[:, 9:12] @ Rw, Q * X[:, 12:12 + m] / L])
+    return from_cable_frame(Y, (c, cb))
 
 
 def _normalized_coordinates(X, m, c, L, Rw, cb, Q):
     """The inverse of :func:`_world_coordinates`: rows (p, u, v, w, lam) of the robot -> (p^, u^, v^, w^, lam^),
     u^ = Rw u (and v, w), p^ = Rw (p + R cb - c) / L, lam^ = L lam / Q."""
-    u, v, w = X[:, 3:6], X[:, 6:9], X[:, 9:12]
-    p = (X[:, 0:3] + cb[0] * u + cb[1] * v + cb[2] * w - c) @ Rw.T / L
-    return np.hstack([p, u @ Rw.T, v @ Rw.T, w @ Rw.T, L * X[:, 12:12 + m] / Q])
+    Y = to_cable_frame(X, (c, cb))
+    return np.hstack([Y[:, 0:3] @ Rw.T / L, Y[:, 3:6] @ Rw.T, Y[:, 6:9] @ Rw.T, Y[:, 9:12] @ Rw.T,
+                      L * Y[:, 12:12 + m] / Q])
 
 
 def _with_endpoint_certificates(robot, rho, items) -> list:

@@ -85,3 +85,20 @@ def encode(p, R, lam) -> np.ndarray:
     """(p, R, lam) -> the unknown vector of :func:`taut_family`."""
     R = np.asarray(R)
     return np.concatenate([np.asarray(p), R[:, 0], R[:, 1], R[:, 2], np.asarray(lam)])
+
+
+def to_cable_frame(X, frame) -> np.ndarray:
+    """Rows (p, u, v, w, lam) with the world origin moved to c and the platform frame to cb (``frame`` = (c, cb),
+    :attr:`cdpr_algebra.model.robot.Robot.cable_frame`): p' = p + R cb - c, R = [u v w]; the rest unchanged."""
+    c, cb = frame
+    out = np.array(X, copy=True)
+    out[:, :3] = X[:, :3] + X[:, 3:6] * cb[0] + X[:, 6:9] * cb[1] + X[:, 9:12] * cb[2] - c
+    return out
+
+
+def from_cable_frame(X, frame) -> np.ndarray:
+    """The inverse of :func:`to_cable_frame`: p = c + p' - R cb."""
+    c, cb = frame
+    out = np.array(X, copy=True)
+    out[:, :3] = c + X[:, :3] - (cb[0] * X[:, 3:6] + cb[1] * X[:, 6:9] + cb[2] * X[:, 9:12])
+    return out
