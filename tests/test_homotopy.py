@@ -445,3 +445,19 @@ def test_duplicate_groups_match_the_pairwise_definition():
             finally:
                 EG.DUPLICATE_CHUNK = old
             assert got == want
+
+
+def test_endgame_without_infinity_verdicts_decides_no_path_at_infinity():
+    """``EndgameOptions.infinity_verdicts=False``: the two paths of x y - 2 = x y + x + y - 5 = 0 that go to infinity
+    are not decided at infinity (they end failed, undecided); the two finite solutions are found as before."""
+    from cdpr_algebra.homotopy.results import FAILURES
+
+    x, y = sp.symbols("x y")
+    o = SolveOptions()
+    o = replace(o, endgame=replace(o.endgame, infinity_verdicts=False))
+    r = solve(PolynomialSystem([x * y - 2, x * y + x + y - 5], [x, y]), seed=0, options=o)
+    s = r.summary()
+    assert (s.paths, s.success, s.at_infinity) == (4, 2, 0)
+    assert sum(p.status in FAILURES for p in r.track.paths) == 2
+    got = sorted(tuple(np.round(v.x.real, 10)) for v in r.solutions)
+    assert got == [(1.0, 2.0), (2.0, 1.0)]

@@ -87,6 +87,10 @@ class EndgameOptions:
     * ``infinity_margin`` [10]: with ``projective``, y0* counts as zero when |y0*| <= margin x its accuracy
       (the Cauchy estimate's, at least 1e-14) and as nonzero beyond; ``min_order`` [1 / 32]: the smallest
       valuation v of y0(t) ~ t^v that shows y0 -> 0 (1 / (2 ``max_winding_number``));
+    * ``infinity_verdicts`` [True]: False makes the affine Cauchy endgame decide no path at infinity (no norm or
+      valuation test; a loop mean that does not solve H = 0 sends the path to smaller radii, as in a chart): for runs
+      whose caller keeps only endpoints it can prove (the DGP's re-track in Study parameters, where a mean with a large
+      residual at t ~ 1e-3 came from loops around a cluster of ill-conditioned roots, not from a diverging path);
     * ``infinity_samples`` [12]: in a chart, a path whose ``max_samples`` radii end without two agreeing Cauchy
       estimates, and whose best estimate has y0 within ``infinity_margin`` of its accuracy (it would be decided at
       infinity from an estimate that did not converge), is sampled at up to this many further radii (t down to
@@ -117,6 +121,7 @@ class EndgameOptions:
     infinity_margin: float = 10.0
     min_order: float = 1.0 / 32.0
     infinity_samples: int = 12
+    infinity_verdicts: bool = True
 
     def to_dict(self):
         return asdict(self)
@@ -287,7 +292,8 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
     """Power-series valuation test for divergence plus Cauchy-integral endgame (see module doc).  With ``chart``
     (x in a projective chart) no path is declared at infinity here: every converged limit is returned as a finite
     chart point (``singular``, provisional) for :func:`decide_in_chart`, and a limit that does not solve H = 0
-    is ``endgame_failed``."""
+    is ``endgame_failed``; without ``o.infinity_verdicts`` likewise (no chart decision follows)."""
+    verdicts = not chart and o.infinity_verdicts
     x = np.array(x, dtype=complex, copy=True)
     xprev = np.full_like(x, np.nan)
     N, n = x.shape
@@ -321,7 +327,7 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
         lognorm.append(ln)
         vals.append(v)
         nx = np.max(np.abs(x[a]), axis=1)
-        if chart:  # a chart point does not go to infinity: only a failed segment stops the path
+        if not verdicts:  # a chart point does not go to infinity: only a failed segment stops the path
             infl = np.zeros(len(a), dtype=bool)
         else:
             infl = (nx > o.at_infinity_norm) | (seg.status == DIVERGED)
@@ -354,7 +360,7 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
             diverging = ci[~(resid <= o.finite_residual)]
             conv[diverging] = False
             ok[diverging] = False
-            if chart:
+            if not verdicts:
                 # a chart point does not diverge: the loops enclosed branch points other than t = 0 (a cluster
                 # near it), so the mean is not the limit yet; go on at smaller radii (failed if samples run out)
                 prev_est[a[diverging]] = np.nan
