@@ -118,3 +118,62 @@ def test_study_residual_in_double_double():
         dd = residual_dd(ParameterHomotopy(sys_, p1, p0))(X, 0.0)
         F = study_family(m).evaluate(X, p0)
         assert np.max(np.abs(dd - F)) <= 1e-12 * (1 + np.max(np.abs(F)))
+
+
+def test_ill_conditioned_study_limits_are_rescued_and_proven(monkeypatch):
+    """Test 2's taut set {1, 2, 4, 6}: 39 of its 216 paths fail in (p, u, v, w, lam).  Tracked in Study parameters,
+    most of them end at complex poses with |R| ~ 1e5 whose Study Jacobians have condition numbers 1e12-1e16: the
+    endgame calls them singular by the condition number alone (one sheet, winding number 1; 60-digit Newton converges
+    quadratically there, sixteenth session), and before they were left failed.  Newton's method in the taut system
+    settles them; every regular endpoint of the subproblem, those included, is then proven a root unique in its box,
+    the boxes pairwise disjoint (ball arithmetic where double precision does not suffice)."""
+    from cdpr_algebra.certificates.equilibria import certify_endpoints
+    from cdpr_algebra.dgp import study_retrack as SR
+
+    robot = load_robot(ROOT / "examples" / "seed000_test2.toml")
+    rho = np.asarray(robot.lengths, float)
+    cables = (0, 1, 3, 5)
+    target, c, L, Rw, cb = S._normalized(robot, rho, cables)
+    monkeypatch.setattr(S, "STUDY_RETRACK", False)
+    res, failed = S._track(4, target, 0, gamma=False)
+    assert failed >= 30
+    p_gen, X_gen = S._generic(4)
+    again, rescued = retrack_failed_in_study(S.fast_family(4), res, 4, p_gen, X_gen, target, 0, False,
+                                             S.default_options())
+    assert rescued >= 30
+    kept = [p for p in again.track.paths if p.retried == "study"]
+    assert len(kept) == rescued and max(p.condition for p in kept) > 1e10  # beyond the endgame's regular bound
+    regular = np.array([p.endpoint for p in again.track.paths if p.status == SUCCESS])
+    Z = S._world_coordinates(regular, 4, c, L, Rw, cb, robot.load)
+    ((boxes, over),) = certify_endpoints(robot, rho, [(list(cables), Z)], [True])
+    assert boxes.proven.all() and not over.any()
+    # without the singular limits of one sheet (the fifteenth session's rule) they stay failed
+    monkeypatch.setattr(SR, "_limit_of_one_sheet", lambda q, o: False)
+    _, before = retrack_failed_in_study(S.fast_family(4), res, 4, p_gen, X_gen, target, 0, False, S.default_options())
+    assert before <= rescued - 30
+
+
+def test_limit_of_one_sheet_needs_one_sheet_a_solution_and_a_pose():
+    """The Study endgame's ``singular`` limits that the re-track may try to prove: winding number 1, a decent Cauchy
+    accuracy, a residual that solves the system, and N = e . e away from 0 beyond that accuracy."""
+    from cdpr_algebra.dgp.study_retrack import _limit_of_one_sheet
+    from cdpr_algebra.homotopy.endgame import EndgameOptions
+    from cdpr_algebra.homotopy.results import AT_INFINITY, SINGULAR, PathResult
+
+    o = EndgameOptions()
+    e = np.array([1.0, 0.5j, 0.3, 0.2])  # N / |e|^2 ~ 0.8
+    iso = np.array([1.0, 1j, 0.0, 0.0]) + 1e-9  # N ~ 2e-9: a point of the quadric N = 0 to 1e-9
+    x = np.concatenate([e, np.ones(6)])
+
+    def path(**kw):
+        base = dict(index=0, status=SINGULAR, endpoint=x, t=0j, residual=1e-15, condition=1e13, accuracy=1e-10,
+                    steps=10, winding_number=1, retried="")
+        return PathResult(**{**base, **kw})
+
+    assert _limit_of_one_sheet(path(), o)
+    assert not _limit_of_one_sheet(path(winding_number=2), o)
+    assert not _limit_of_one_sheet(path(status=AT_INFINITY), o)
+    assert not _limit_of_one_sheet(path(residual=1e-3), o)
+    assert not _limit_of_one_sheet(path(accuracy=np.nan), o)
+    assert not _limit_of_one_sheet(path(accuracy=1e-3), o)
+    assert not _limit_of_one_sheet(path(endpoint=np.concatenate([iso, np.ones(6)]), accuracy=1e-8), o)

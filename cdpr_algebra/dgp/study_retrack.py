@@ -6,8 +6,9 @@ infinity of the complex rotation group meet condition numbers of 1e10-1e11 there
 are ordinary points with small N = e . e.  :func:`retrack_failed_in_study` takes each failed path's start point to
 Study coordinates and tracks it again along the same parameter path (the same segment, or the same gamma: the
 homotopy is drawn from the same seed), so it follows the same solution curve in other coordinates and ends on that
-path's own endpoint.  A path whose new run ends regular is kept when its endpoint, mapped back, solves the taut
-system to ``RESIDUAL_TOL`` and is distinct from every other path's regular endpoint (``endgame.coincides_with_any`` at
+path's own endpoint.  A path whose new run ends regular, or ``singular`` by its condition number alone (a limit
+on one sheet at a pose, :func:`_limit_of_one_sheet`), is kept when its endpoint, mapped back, converges under
+Newton's method in the taut system to ``RESIDUAL_TOL`` and is distinct from every other path's regular endpoint (``endgame.coincides_with_any`` at
 the endgame's cluster tolerance, the detour retry's test; a coincidence means a jump of one of them: the path stays
 failed, nothing is merged); every other path keeps its outcome.  Its endpoint is then
 certified like any other (the DGP's endpoint certificates, in the taut system).
@@ -16,6 +17,17 @@ Measured (fifteenth session, Berti et al. 2016 Test 3, taut set {2, 3, 4, 5}, 13
 with the generic engine tracking all 216 paths in Study parameters 213 end regular; the 10 former failures among
 them end at complex poses with |R| = 1.6e3 .. 2.1e4 (N / |e|^2 = 6e-4 .. 5e-5), the 203 others on the same points
 as before (relative differences <= 4e-9).
+
+Sixteenth session, Test 2's taut set {1, 2, 4, 6} (39 failed paths): the Study endgame ended 35 of them ``singular``
+and 4 ``at_infinity``.  The singular ones have winding number 1, Cauchy accuracies 1e-10 .. 1e-16, residuals ~1e-17
+and N / |e|^2 ~ 1e-6 .. 1e-5 (poses with |R| ~ 1e5, |lam| ~ 1e4); only their condition numbers (1e12 .. 1e16) made
+them singular.  Newton's method at 60 digits converges quadratically from each (residual 1e-56): they are regular
+roots, distinct, ill-conditioned, and Newton in the taut system with double-double residuals settles them; the ball
+Krawczyk test proves every one.  The 4 ``at_infinity`` came from the affine endgame's rule that a loop mean with a
+large residual (1e-4 at t = 1.6e-3) means divergence; here the loops enclosed other branch points of that cluster,
+and sampled further (``EndgameOptions.infinity_verdicts`` off: a re-track keeps only what Newton settles, so it
+needs no verdict at infinity) they end on proven roots too.  Test 2: 123 failed paths -> 4, 12 incomplete subproblems
+-> 4.
 """
 
 from __future__ import annotations
@@ -24,7 +36,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from cdpr_algebra.homotopy.results import FAILURES, SUCCESS
+from cdpr_algebra.homotopy.results import FAILURES, SINGULAR, SUCCESS
 from cdpr_algebra.model.study_equations import STUDY_CHART_PARAMETERS, from_study, study_family, to_study
 
 from .taut_system import LazyFamilySystem
@@ -118,14 +130,31 @@ def study_chart() -> np.ndarray:
 
 def _study_options(options):
     """The DGP's options for the Study run (its step budget and tolerances included): affine endgame (the projective
-    one homogenizes quadratic systems only), no detours (one route for every path), no retries of any kind (a path
-    failed here stays failed), and Newton residuals in double-double where double precision stalls (``EXTENDED``)."""
+    one homogenizes quadratic systems only) with no verdicts at infinity (a path that is not settled stays failed),
+    no detours (one route for every path), no retries of any kind (a path failed here stays failed), and Newton
+    residuals in double-double where double precision stalls (``EXTENDED``)."""
     from cdpr_algebra.homotopy.endgame import SolveOptions
 
     base = options if options is not None else SolveOptions()
-    return replace(base, endgame=replace(base.endgame, projective=False), detour_retry=False, retry_tight=False,
+    return replace(base, endgame=replace(base.endgame, projective=False, infinity_verdicts=False),
+                   detour_retry=False, retry_tight=False,
                    retry_mpmath=False, check_path_jumping=False,
                    tracker=replace(base.tracker, extended_residual=EXTENDED))
+
+
+def _limit_of_one_sheet(q, o) -> bool:
+    """A Study path ``q`` that the endgame (options ``o``) ended ``singular`` only by its condition number: its Cauchy
+    estimate converged on one sheet (winding number 1, accuracy within ``DECENT_ACCURACY``) to a point that solves
+    the Study system (relative residual <= ``o.finite_residual``) and whose N = e . e is nonzero beyond that
+    accuracy (``o.infinity_margin`` times it: a pose, not a point of N = 0)."""
+    from cdpr_algebra.homotopy.endgame import DECENT_ACCURACY
+
+    if q.status != SINGULAR or q.winding_number != 1 or not (q.residual <= o.finite_residual):
+        return False
+    if not (np.isfinite(q.accuracy) and q.accuracy <= DECENT_ACCURACY):
+        return False
+    e = np.asarray(q.endpoint[:4], dtype=complex)
+    return bool(abs(e @ e) > o.infinity_margin * max(q.accuracy, 1e-14) * np.vdot(e, e).real)
 
 
 def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutions, target, seed: int, gamma: bool,
@@ -148,8 +177,10 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     sres = solve_parameter_homotopy(fast_study_family(m), np.concatenate([start_parameters, chart]), Y1,
                                     np.concatenate([np.asarray(target, dtype=complex), chart]), seed=seed,
                                     options=opts, gamma=gamma, retries=0)
-    ok = [j for j, q in enumerate(sres.track.paths) if q.status == SUCCESS]
-    X0 = from_study(np.array([sres.track.paths[j].endpoint for j in ok]).reshape(-1, 8 + m), m)
+    spaths = sres.track.paths
+    ok = [j for j, q in enumerate(spaths) if q.status == SUCCESS or _limit_of_one_sheet(q, opts.endgame)]
+    with np.errstate(all="ignore"):
+        X0 = from_study(np.array([spaths[j].endpoint for j in ok]).reshape(-1, 8 + m), m)
     finite = np.all(np.isfinite(X0), axis=1)
     ok, X0 = [j for j, f in zip(ok, finite) if f], X0[finite]
     if not ok:
@@ -167,7 +198,7 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
         i = failed[j]
         paths[i] = replace(paths[i], status=SUCCESS, endpoint=x, t=0j, residual=float(residual[k]),
                            condition=float(cond[k]), accuracy=float(upd[k]),
-                           steps=paths[i].steps + sres.track.paths[j].steps, winding_number=1, retried="study")
+                           steps=paths[i].steps + spaths[j].steps, winding_number=1, retried="study")
         regular.append(x)
         rescued += 1
     if not rescued:
