@@ -635,13 +635,14 @@ def _compiled_krawczyk(rho, rows, f_iv, constants):
 
 
 BALL_RETRY_MAX = 400  # roots per call retried in ball arithmetic (tens of milliseconds each)
-BALL_PREC = 256  # bits
+BALL_PREC = 256  # bits: the constants, and the last attempt of the ball retry
+BALL_PRECS = (128, BALL_PREC)  # the ball retry's attempts (the first suffices for condition numbers up to ~1e25)
 FLINT = threading.RLock()  # python-flint's working precision is global to the process: one thread at a time uses it
 
 
 def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry, frame=None):
     """The roots that double-precision interval arithmetic could not certify, tested again in complex ball
-    arithmetic at ``BALL_PREC`` bits (:func:`cdpr_algebra.intervals.complex_krawczyk.certify_complex_root_balls`; only rows with
+    arithmetic at ``BALL_PRECS`` bits (128, then 256 where 128 does not prove it) (:func:`cdpr_algebra.intervals.complex_krawczyk.certify_complex_root_balls`; only rows with
     ``retry``, at most ``BALL_RETRY_MAX`` of them, the others keep their reason; ``frame``: Z's frame, see
     :func:`certify_endpoints`, None for world coordinates)."""
     from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes
@@ -676,7 +677,10 @@ def _ball_proofs(robot, rho, rows, Z, scale, todo, proven, lo, hi, real, nonreal
             def system(x, jac, A=A, b=b, rho2=rho2):
                 return taut_system(x, A, b, g, f, rho2, jacobian=jac)
 
-            ok, lk, hk, rk, nk, why = certify_complex_root_balls(system, Z[k], scale, prec=BALL_PREC)
+            for prec in BALL_PRECS:  # the constants stay exact (BALL_PREC); arithmetic at prec rounds outward
+                ok, lk, hk, rk, nk, why = certify_complex_root_balls(system, Z[k], scale, prec=prec)
+                if ok:
+                    break
             if ok:
                 proven[k], lo[k], hi[k], real[k], nonreal[k], reason[k] = True, lk, hk, rk, nk, ""
             else:

@@ -283,9 +283,9 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
                                real_rtol: float = 1e-8, newton_steps: int = 40, max_iter: int = 10):
     """The Krawczyk test of :func:`certify_complex_roots` for one root, in complex ball arithmetic at ``prec`` bits
     (python-flint acb): for roots too ill-conditioned for double precision (condition numbers beyond ~1e8, where
-    the rounding of F(y) alone exceeds any box the operator can contract).  Newton's method runs until two steps
-    fall below 2^(-prec/2) of the scale (at most ``newton_steps``: from a double-precision endpoint of condition
-    1e11 it needs 20 and more).
+    the rounding of F(y) alone exceeds any box the operator can contract).  Newton's method (midpoint arithmetic: its
+    steps need no error bounds) runs until a step falls below 2^(-prec/2) of the scale, the next one being below the
+    precision (at most ``newton_steps``: from a double-precision endpoint of condition 1e11 it needs 20 and more).
 
     ``system(z, jacobian) -> (F, J)``: plain arithmetic over acb balls, constants exact (or balls); ``z`` (n,)
     complex; ``scale`` (n,).  Newton's method at ``prec`` bits from z (midpoints), then epsilon-inflation as in
@@ -311,42 +311,43 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
 
     with ctx.workprec(prec):
         y = [cplx(float(v.real), float(v.imag)) for v in z]
-        converged = 0
+        singular = (False, nan, nan, False, False, "the Jacobian is singular at the root (ball arithmetic)")
+        eye = acb_mat(n, n, [1 if i == k else 0 for i in range(n) for k in range(n)])
         for _ in range(newton_steps):
             F, J = system(y, True)
-            try:
-                dy = acb_mat([[acb(e) for e in row] for row in J]).solve(acb_mat(n, 1, [acb(f) for f in F]))
+            try:  # Newton's steps need no error bounds: midpoint arithmetic ("approx"), the test below is the proof
+                dy = acb_mat(J).mid().solve(acb_mat(n, 1, F).mid(), algorithm="approx")
             except ZeroDivisionError:
-                return False, nan, nan, False, False, "the Jacobian is singular at the root (ball arithmetic)"
+                return singular
+            if not all(dy[k, 0].is_finite() for k in range(n)):
+                return singular
             y = [(y[k] - dy[k, 0]).mid() for k in range(n)]
             if is_real:
                 y = [acb(v.real) for v in y]
             step = max(float(abs(dy[k, 0]).upper()) / s[k] for k in range(n))
             if step < 2.0 ** (-prec / 2):  # quadratic convergence: the next step is below the precision
-                converged += 1
-                if converged == 2:
-                    break
+                break
         yc = np.array([complex(v) for v in y])
         if np.any(np.abs(yc - z) > rmax):
             return False, nan, nan, False, False, (
                 f"Newton's method moves the root by more than the box width limit ({max_rel_width:.0e} relative): "
                 f"it is not a root to that accuracy")
         F, J = system(y, True)
-        try:
-            C = acb_mat([[acb(e).mid() for e in row] for row in J]).inv()
+        try:  # C: any approximate inverse (the Krawczyk operator is an enclosure for every C)
+            C = acb_mat(J).mid().solve(eye, algorithm="approx").mid()
         except ZeroDivisionError:
-            return False, nan, nan, False, False, "the Jacobian is singular at the root (ball arithmetic)"
-        C = acb_mat([[C[i, k].mid() for k in range(n)] for i in range(n)])
-        newton = acb_mat(n, 1, y) - C * acb_mat(n, 1, [acb(f) for f in F])
+            return singular
+        if not all(C[i, k].is_finite() for i in range(n) for k in range(n)):
+            return singular
+        newton = acb_mat(n, 1, y) - C * acb_mat(n, 1, F)
         dev0 = np.array([float(abs(newton[k, 0] - y[k]).upper()) for k in range(n)])
         r = np.maximum(4 * dev0, 2.0 ** (8 - prec) * s)
-        eye = acb_mat(n, n, [1 if i == k else 0 for i in range(n) for k in range(n)])
         for _ in range(max_iter):
             if np.any(r > rmax):
                 break
             X = [acb(arb(y[k].real, r[k]), arb(y[k].imag, r[k])) for k in range(n)]
             _, JX = system(X, True)
-            M = eye - C * acb_mat([[acb(e) for e in row] for row in JX])
+            M = eye - C * acb_mat(JX)
             K = newton + M * acb_mat(n, 1, [X[k] - y[k] for k in range(n)])
             Kl = [K[k, 0] for k in range(n)]
             if all(X[k].real.contains_interior(Kl[k].real) and X[k].imag.contains_interior(Kl[k].imag)
