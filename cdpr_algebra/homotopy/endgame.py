@@ -23,7 +23,9 @@ Pipeline (:func:`run_pipeline`, used by :func:`track_paths`), all vectorized acr
    is an ordinary point), and the Cauchy endgame runs there.  Its limit Y* = (y0*, y*) is a finite solution
    x = y* / y0* when y0* is nonzero beyond the endgame's accuracy, and at infinity when y0* vanishes to that
    accuracy while the samples show y0(t) ~ t^v with v > 0 (``order`` v, winding number c); anything else is
-   ``endgame_failed``.  Homotopies that are already projective (retries) are decided the same way.
+   ``endgame_failed``.  Homotopies that are already projective (retries) are decided the same way, and so are the
+   affine endgame's limits of a system that names its points at infinity (``system.infinity_coordinate(Y)``, a
+   quantity of size ~1 that vanishes there, e.g. Study's N / |e|^2 for the DGP's re-track) in place of y0.
 4. path jumping: distinct paths must not end at the same nonsingular point; duplicates are
    re-tracked from the start with tighter settings (then in mpmath). Endpoints still shared by
    several paths (within ``cluster_tol``) are singular: their multiplicity is the path count.
@@ -402,23 +404,29 @@ def _would_be_at_infinity(Y, accuracy, o: EndgameOptions) -> np.ndarray:
     return (accuracy <= DECENT_ACCURACY) & decide_in_chart(Y, accuracy, o=o)[0]
 
 
-def decide_in_chart(Y, accuracy, ylast=None, yprev=None, o: EndgameOptions = EndgameOptions()):
+def decide_in_chart(Y, accuracy, ylast=None, yprev=None, o: EndgameOptions = EndgameOptions(), coordinate=None):
     """Finite or at infinity, for limits Y* (rows) of paths in a projective chart, from the homogenizing
     coordinate y0 (column 0).  Returns (at_infinity, undecided, order): ``at_infinity`` where |y0*| <=
     ``infinity_margin`` x the accuracy (relative ``accuracy``, at least 1e-14, times |Y*|) and the samples at the
     last two radii of the endgame (``ylast``, ``yprev``: None for endpoints that Newton refined, whose accuracy
     is then full precision) show y0(t) ~ t^v with v >= ``min_order`` (``order`` = v); ``undecided`` where y0*
     vanishes to accuracy but the samples do not show y0 -> 0; finite elsewhere (y0* nonzero beyond its
-    accuracy: x = y* / y0*, whatever its size)."""
+    accuracy: x = y* / y0*, whatever its size).  ``coordinate(Y) -> (N,)``: instead of y0 / |Y|, another
+    quantity of size ~1 whose vanishing means infinity (:func:`_finish`: a system's ``infinity_coordinate``)."""
     Y = np.atleast_2d(Y)
-    scale = np.max(np.abs(Y), axis=1)
-    err = o.infinity_margin * np.maximum(np.where(np.isfinite(accuracy), accuracy, np.inf), 1e-14) * scale
-    zero = np.abs(Y[:, 0]) <= err
+    acc = o.infinity_margin * np.maximum(np.where(np.isfinite(accuracy), accuracy, np.inf), 1e-14)
     order = np.full(len(Y), np.nan)
+    if coordinate is None:
+        zero = np.abs(Y[:, 0]) <= acc * np.max(np.abs(Y), axis=1)
+    else:
+        zero = np.abs(coordinate(Y)) <= acc
     if ylast is None:
         return zero, np.zeros(len(Y), dtype=bool), order
     with np.errstate(all="ignore"):
-        v = np.log(np.abs(ylast[:, 0]) / np.abs(yprev[:, 0])) / np.log(o.sample_ratio)
+        if coordinate is None:
+            v = np.log(np.abs(ylast[:, 0]) / np.abs(yprev[:, 0])) / np.log(o.sample_ratio)
+        else:
+            v = np.log(np.abs(coordinate(ylast)) / np.abs(coordinate(yprev))) / np.log(o.sample_ratio)
     shown = np.isfinite(v) & (v >= o.min_order)
     order[zero & shown] = v[zero & shown]
     return zero & shown, zero & ~shown, order
@@ -665,8 +673,10 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
         steps[rest] += eg.steps
         st, Y, a_ = eg.status.copy(), eg.x, eg.accuracy.copy()
         fin = np.flatnonzero(st == SINGULAR)
-        if in_chart and fin.size:
-            inf, undecided, ordv = decide_in_chart(Y[fin], a_[fin], eg.xlast[fin], eg.xprev[fin], eo)
+        # a system of other coordinates may say where its points are at infinity (Study's N = e . e = 0)
+        vanish = None if in_chart else getattr(getattr(homotopy, "system", None), "infinity_coordinate", None)
+        if (in_chart or vanish is not None) and fin.size:
+            inf, undecided, ordv = decide_in_chart(Y[fin], a_[fin], eg.xlast[fin], eg.xprev[fin], eo, vanish)
             st[fin[inf]] = AT_INFINITY
             st[fin[undecided]] = ENDGAME_FAILED
             order[rest[fin]] = ordv
