@@ -156,7 +156,7 @@ def test_dgp_roots_proven_in_balls_are_enclosed_to_double_precision():
                          double.center[bad], tuple(double.reason[k] for k in bad))
     scale = np.broadcast_to(EQ._scales(robot, len(cables), range(12 + len(cables)), robot.cable_scale),
                             (Z.shape[1],))
-    frame = EQ._cable_frame(robot)  # certify_endpoints works in the cable frame
+    frame = robot.cable_frame  # certify_endpoints works in the cable frame
     out = EQ._retry_in_balls(robot, rho, np.repeat(np.array(cables)[None], len(bad), axis=0),
                              to_cable_frame(Z[bad], frame), scale, boxes, np.ones(len(bad), bool), frame)
     assert out.proven.all()

@@ -100,7 +100,7 @@ def test_far_centre_of_mass_is_returned_and_complete():
     hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-9 * np.abs(p).max()
             and np.max(np.abs(s.rotation - R)) <= 1e-9]
     assert len(hits) == 1 and np.allclose(hits[0].tensions, tau, rtol=1e-6)
-    # its certificate: proven in the cable frame (certificates.equilibria._cable_frame) with box scales from the
+    # its certificate: proven in the cable frame (Robot.cable_frame, certificates.equilibria) with box scales from the
     # root's own magnitudes; in the robot's frames with scales L and Q / L no box was proven (thirteenth session)
     c = hits[0].certificate
     assert c.certified and c.tension_signs == ("positive",) * 5
@@ -165,7 +165,7 @@ def test_an_ill_conditioned_equilibrium_is_polished_and_certified():
 def test_far_platform_frame_endpoints_are_certified():
     """m = 4, K = 1e5: the platform points lie 1.7e4 cable-geometry sizes from the platform frame's origin.  In the
     robot's own frames 4 of the 215 regular endpoints were proven distinct roots (rotation errors multiplied by that
-    distance); in the cable frame (certificates.equilibria._cable_frame) every one is."""
+    distance); in the cable frame (Robot.cable_frame, certificates.equilibria) every one is."""
     robot, _, _, _ = large_force_robot(4, 1e5, 370)
     assert np.linalg.norm(robot.platform.mean(axis=0)) > 1e3 * robot.cable_scale
     sub, _ = solve_taut_set(robot, robot.lengths, tuple(range(4)), certify=False)

@@ -179,30 +179,25 @@ def test_limit_of_one_sheet_needs_one_sheet_a_solution_and_a_pose():
     assert not _limit_of_one_sheet(path(endpoint=np.concatenate([iso, np.ones(6)]), accuracy=1e-8), o)
 
 
-def test_study_limits_on_the_quadric_n_zero_are_at_infinity(monkeypatch):
+def test_study_limits_on_the_quadric_n_zero_are_at_infinity():
     """Seed 002's 8-cable robot, taut set {1, 2, 5}: 31 of its 156 paths fail in (p, u, v, w, lam) at t ~ 1e-4 with
-    |x| ~ 1e5.  In Study parameters they converge (winding number 2) to points of the quadric N = e . e = 0, where
-    no pose is: the rotation R = Q(e) / N is at infinity.  The endgame decides them at infinity from
-    ``FastStudySystem.infinity_coordinate`` as it decides y0 = 0 in a projective chart (N(t) ~ t^v, v ~ 1/2), and the
-    subproblem is accounted for: 100 regular endpoints, all certified, and 56 at infinity, as its neighbour {1, 3, 5}
-    (same m and robot) has.  Without that coordinate they stay failed."""
-    from cdpr_algebra.dgp.study_retrack import FastStudySystem
-    from cdpr_algebra.homotopy.results import AT_INFINITY
+    |x| ~ 1e5 (without the Study run's verdict they stayed failed, fifteenth session).  In Study parameters they
+    converge (winding number 2) to points of the quadric N = e . e = 0, where no pose is: the rotation R = Q(e) / N
+    is at infinity.  The endgame decides them at infinity from ``FastStudySystem.infinity_coordinate`` as it decides
+    y0 = 0 in a projective chart (N(t) ~ t^v, v ~ 1/2), and every path is accounted for: 100 regular endpoints and
+    56 at infinity, as its neighbour {1, 3, 5} (same m and robot) has."""
+    from cdpr_algebra.homotopy.results import AT_INFINITY, outcome_counts
 
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
     rho = np.asarray(robot.lengths, float)
-    sub, _ = S.solve_taut_set(robot, rho, (0, 1, 4))
-    assert sub.complete and sub.outcomes == {"regular": 100, "singular": 0, "at_infinity": 56, "failed": 0}
-    assert sub.retried.get("study", 0) >= 25 and sub.certified == 100
     target = S._normalized(robot, rho, (0, 1, 4))[0]
     res, failed = S._track(3, target, 0, gamma=False)
+    assert failed == 0 and outcome_counts(res.track.paths) == {"regular": 100, "singular": 0, "at_infinity": 56,
+                                                               "failed": 0}
     study = [p for p in res.track.paths if p.retried == "study"]
-    assert failed == 0 and study and all(p.status == AT_INFINITY for p in study)
+    assert len(study) >= 25 and all(p.status == AT_INFINITY for p in study)
     assert all(p.winding_number >= 2 and 0 < p.order <= 1 for p in study)
     assert min(np.max(np.abs(p.endpoint)) for p in study) > 1e4  # their last points in (p, u, v, w, lam)
-    monkeypatch.delattr(FastStudySystem, "infinity_coordinate")
-    _, failed_without = S._track(3, target, 0, gamma=False)
-    assert failed_without == len(study)
 
 
 def test_infinity_coordinate_of_study_points():

@@ -23,7 +23,11 @@ Existence and uniqueness: Krawczyk test with epsilon-inflation (:func:`cdpr_alge
 width <= 1e-9 relative to the scale of each unknown (L = robot.cable_scale for positions, 1 for rotation entries,
 Q / L for lam; positions and lam at least as large as the root's, :func:`_scales`).  DGP roots are certified with
 the world origin at the base points' centroid and the platform frame at the platform points' centroid
-(:func:`_cable_frame`), tried at 53 bits and then at 128 bits with Newton steps in ball arithmetic; a root that
+(:attr:`cdpr_algebra.model.robot.Robot.cable_frame`: an equivalent system, since given force balance moments about c
+are moments about the world origin minus c x the load; in the robot's own frames a pose far from the world origin,
+or attachment points far from the platform frame's origin, multiply the rotation's and tensions' rounding by those
+distances: a platform 1e4 sizes from its frame's origin, tests/large_forces.py, was not certified at any box width),
+tried at 53 bits and then at 128 bits with Newton steps in ball arithmetic; a root that
 doubles cannot locate within the box (condition numbers of 1e9 and more) is polished first
 (:func:`polished_taut_root`) and the DGP reports the polished root.  Over the certified box, in outward-rounded ball arithmetic (python-flint arb):
 
@@ -52,7 +56,7 @@ import numpy as np
 from flint import arb, arb_mat
 
 from cdpr_algebra.generated.taut_equations import taut_equations, taut_residual
-from cdpr_algebra.model.taut_equations import encode, to_cable_frame
+from cdpr_algebra.model.taut_equations import decode, encode, from_cable_frame, to_cable_frame
 from cdpr_algebra.intervals.balls import bounds, krawczyk_certify, sign, symmetric_inertias
 from cdpr_algebra.report.jsonable import jsonable
 
@@ -244,26 +248,16 @@ def _hessian_class(inertia, m) -> tuple[str, str | None]:
 
 
 def _robot_balls(robot, frame=None):
-    """(A_i, b'_i, g') of all n cables as balls: exact, or in the ``frame`` (c, cb) of :func:`_cable_frame` (A_i - c,
+    """(A_i, b'_i, g') of all n cables as balls: exact, or in the ``frame`` (c, cb) of :attr:`Robot.cable_frame` (A_i - c,
     b'_i - cb, g' - cb, the differences enclosed)."""
     return _robot_data(robot, range(robot.n), arb, frame=frame)[:3]
-
-
-def _cable_frame(robot):
-    """(c, cb) = :attr:`cdpr_algebra.model.robot.Robot.cable_frame`.  The DGP's root is certified with the world
-    origin moved to c and the platform frame to cb (an equivalent system: given force balance, moments about c are
-    moments about the world origin minus c x the load).  In the robot's own frames a pose far from the world
-    origin, or attachment points far from the platform frame's origin, multiply the rotation's and tensions'
-    rounding by those distances: a platform 1e4 sizes from its frame's origin (tests/large_forces.py) was not
-    certified at any box width."""
-    return robot.cable_frame
 
 
 def _consequences(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None, frame=None) -> Certificate:
     """Certificate from the certified enclosures: p (3 balls), R (3 x 3 balls), lam (m balls) of the taut cables.
     ``lengths``: all n lengths (floats) or None (IGP: lengths of the taut cables enclosed from the box);
     ``L``: robot.cable_scale; ``frame``: p is the platform-frame origin in the frame (c, cb) of
-    :func:`_cable_frame` (the robot's position c + p - R cb is enclosed for the certificate)."""
+    :attr:`Robot.cable_frame` (the robot's position c + p - R cb is enclosed for the certificate)."""
     balls, position = None, None
     if frame is not None:
         balls = _robot_balls(robot, frame)
@@ -346,7 +340,7 @@ def _scales(robot, m, cols, L, x=None):
 def _robot_data(robot, taut, num, com_at_origin: bool = False, frame=None):
     """(A, b, g, f) of the taut cables with numbers made by ``num`` (arb: exact balls; float).
     ``com_at_origin``: platform frame moved to G (b_i' - g', g' = 0; the difference is enclosed for arb);
-    ``frame``: (c, cb) of :func:`_cable_frame`, world origin moved to c and platform frame to cb."""
+    ``frame``: (c, cb) of :attr:`Robot.cable_frame`, world origin moved to c and platform frame to cb."""
     c, cb = frame if frame is not None else (np.zeros(3), np.zeros(3))
     A = [[num(float(v)) - num(float(c[k])) for k, v in enumerate(robot.base[i])] for i in taut]
     g = [num(float(v)) - num(float(cb[k])) for k, v in enumerate(robot.com)]
@@ -421,12 +415,12 @@ def polished_taut_root(robot, lengths, cables, position, rotation, tensions, max
         y = refined_root(lambda x: sa(x, False)[0], C, x0, scale, REFINE_STEPS)
     if y is None or not np.all(np.abs(y - x0) <= max_move * scale):
         return None
-    R = y[_U:_LAM].reshape(3, 3).T
-    return y[:3] + frame[0] - R @ frame[1], R, y[_LAM:] * rho[taut]
+    p, R, lam = decode(from_cable_frame(y[None], frame), len(taut))
+    return p[0], R[0], lam[0] * rho[taut]
 
 
 def _taut_problem(robot, lengths, cables, position, rotation, tensions):
-    """(x0, make_system, scale, frame, rho, taut) of the DGP root in the cable frame (:func:`_cable_frame`), or the
+    """(x0, make_system, scale, frame, rho, taut) of the DGP root in the cable frame (:attr:`Robot.cable_frame`), or the
     failed Certificate of a taut set without isolated roots."""
     rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
     taut = [int(c) for c in cables]
@@ -435,7 +429,7 @@ def _taut_problem(robot, lengths, cables, position, rotation, tensions):
     if tensions.shape != (m,) or not 1 <= m <= 6:
         raise ValueError(f"expected 1..6 taut cables and one tension per taut cable, got {m} cables and "
                          f"{tensions.shape} tensions")
-    frame = _cable_frame(robot)
+    frame = robot.cable_frame
     R0 = np.asarray(rotation, float)
     x0 = to_cable_frame(encode(np.asarray(position, float), R0, tensions / rho[taut])[None], frame)[0]
     if m >= 2:
@@ -532,7 +526,7 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
     (:class:`cdpr_algebra.intervals.complex_krawczyk.ComplexRootBoxes`, overlapping (N,) bool): each root proven unique in its box of
     C^(12+m) (real or non-real proven where decidable), and the proven boxes meeting another proven box of the
     same group (those roots are not proven distinct).  The roots are certified in the cable frame
-    (:func:`_cable_frame`: p' = p + R cb - c, the boxes are of those coordinates; distinctness and reality do not
+    (:attr:`Robot.cable_frame`: p' = p + R cb - c, the boxes are of those coordinates; distinctness and reality do not
     depend on the frame).  Constants: A_i - c, b'_i - cb, g' - cb, Q d and rho_i^2 enclosed.  ``balls`` (one bool per
     group, default all True): retry the roots of that group that double precision could not certify in ball
     arithmetic."""
@@ -547,7 +541,7 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
         raise ValueError("certify_endpoints: every group needs the same number m >= 2 of taut cables")
     rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
     rows = np.concatenate([np.repeat(np.asarray(c)[None], len(Z), axis=0) for c, Z in groups]).reshape(-1, m)
-    frame = _cable_frame(robot)
+    frame = robot.cable_frame
     Z = to_cable_frame(np.concatenate([Z for _, Z in groups]).reshape(-1, 12 + m), frame)
     f_float = [robot.load * float(c) for c in robot.load_direction]
     f_iv = [Interval.point(robot.load) * float(c) for c in robot.load_direction]
