@@ -136,11 +136,14 @@ def test_ill_conditioned_roots_need_balls():
     assert not bad[0] and "moves the root" in bad[5]
 
 
-def test_dgp_roots_proven_in_balls_are_enclosed_to_double_precision():
+def test_dgp_roots_proven_in_balls_are_enclosed_to_double_precision(monkeypatch):
     """Seed 000 Test 2, taut set {2, 4, 5, 6}: the regular endpoints that double-precision intervals cannot certify
-    (condition ~1e10) are proven in 256-bit balls, each in a box one or two ulps wide: Newton's method converges at
-    256 bits because the constants (rho_i^2 among them) are exact there.  (With rho_i^2 rounded to 53 bits the
-    balls' F kept a radius of 1e-16, Newton ran to its step limit and the boxes came out up to 75 ulps wide.)"""
+    (condition ~1e10) are proven in ball arithmetic (128 bits, then 256), each in a box one or two ulps wide: Newton's
+    method converges because the constants (rho_i^2 among them) are exact (at 256 bits).  (With rho_i^2 rounded to 53
+    bits the balls' F kept a radius of 1e-16, Newton ran to its step limit and the boxes came out up to 75 ulps wide.)
+    The cap on ball retries holds per group (taut set), not per call: a subproblem's certificate does not depend on
+    the subproblems certified with it (one thread certifies every set of an m in one call, two threads one set a
+    call)."""
     from cdpr_algebra.certificates import equilibria as EQ
     from cdpr_algebra.dgp import solve as D
     from cdpr_algebra.model.robot import load_robot
@@ -162,3 +165,9 @@ def test_dgp_roots_proven_in_balls_are_enclosed_to_double_precision():
     assert out.proven.all()
     size = np.maximum(np.abs(np.hstack([out.center.real, out.center.imag])), np.hstack([scale, scale]))
     assert ((out.hi - out.lo) / size).max() <= 1e-15
+    monkeypatch.setattr(EQ, "BALL_RETRY_MAX", 3)
+    group = np.arange(len(bad)) % 2  # two taut sets' worth of roots in one call
+    capped = EQ._retry_in_balls(robot, rho, np.repeat(np.array(cables)[None], len(bad), axis=0),
+                                to_cable_frame(Z[bad], frame), scale, boxes, np.ones(len(bad), bool), frame, group)
+    assert capped.proven.sum() == 6 and [capped.proven[group == g].sum() for g in (0, 1)] == [3, 3]
+    assert all("more than 3 such roots in its taut set" in r for r, ok in zip(capped.reason, capped.proven) if not ok)

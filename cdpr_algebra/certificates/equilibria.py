@@ -567,7 +567,8 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
                                   kernel=_compiled_krawczyk(rho, rows, f_iv, constants[True]))
     balls = [True] * len(groups) if balls is None else list(balls)
     retry = np.concatenate([np.full(len(Zg), bool(f)) for (_, Zg), f in zip(groups, balls)]).astype(bool)
-    boxes = _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry, frame)
+    group = np.concatenate([np.full(len(Zg), g) for g, (_, Zg) in enumerate(groups)])
+    boxes = _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry, frame, group)
     out, k0 = [], 0
     for _, Zg in groups:
         sl = slice(k0, k0 + len(Zg))
@@ -628,30 +629,36 @@ def _compiled_krawczyk(rho, rows, f_iv, constants):
     return kernel
 
 
-BALL_RETRY_MAX = 400  # roots per call retried in ball arithmetic (tens of milliseconds each)
+BALL_RETRY_MAX = 400  # roots per group (taut set) retried in ball arithmetic (milliseconds each)
 BALL_PREC = 256  # bits: the constants, and the last attempt of the ball retry
 BALL_PRECS = (128, BALL_PREC)  # the ball retry's attempts (the first suffices for condition numbers up to ~1e25)
 FLINT = threading.RLock()  # python-flint's working precision is global to the process: one thread at a time uses it
 
 
-def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry, frame=None):
+def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry, frame=None, group=None):
     """The roots that double-precision interval arithmetic could not certify, tested again in complex ball
-    arithmetic at ``BALL_PRECS`` bits (128, then 256 where 128 does not prove it) (:func:`cdpr_algebra.intervals.complex_krawczyk.certify_complex_root_balls`; only rows with
-    ``retry``, at most ``BALL_RETRY_MAX`` of them, the others keep their reason; ``frame``: Z's frame, see
-    :func:`certify_endpoints`, None for world coordinates)."""
+    arithmetic at ``BALL_PRECS`` bits (128, then 256 where 128 does not prove it)
+    (:func:`cdpr_algebra.intervals.complex_krawczyk.certify_complex_root_balls`; only rows with ``retry``, at most
+    ``BALL_RETRY_MAX`` of them per ``group`` (one id per row, None: one group), the others keep their reason; a cap per
+    group, not per call, so that a subproblem's certificate does not depend on the subproblems certified with it;
+    ``frame``: Z's frame, see :func:`certify_endpoints`, None for world coordinates)."""
     from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes
 
-    todo = [k for k in np.flatnonzero(~boxes.proven & retry) if np.all(np.isfinite(Z[k]))]
+    group = np.zeros(len(Z), dtype=int) if group is None else np.asarray(group)
+    todo, capped, seen = [], [], {}
+    for k in np.flatnonzero(~boxes.proven & retry):
+        if np.all(np.isfinite(Z[k])):
+            seen[group[k]] = seen.get(group[k], 0) + 1
+            (todo if seen[group[k]] <= BALL_RETRY_MAX else capped).append(k)
     proven, lo, hi = boxes.proven.copy(), boxes.lo.copy(), boxes.hi.copy()
     real, nonreal, reason = boxes.real.copy(), boxes.nonreal.copy(), list(boxes.reason)
     for k in np.flatnonzero(~boxes.proven & ~retry):
         reason[k] += " (not retried in ball arithmetic: its subproblem has failed paths)"
-    if not todo:
-        return ComplexRootBoxes(proven, lo, hi, real, nonreal, boxes.center, tuple(reason))
-    with FLINT:
-        _ball_proofs(robot, rho, rows, Z, scale, todo[:BALL_RETRY_MAX], proven, lo, hi, real, nonreal, reason, frame)
-    for k in todo[BALL_RETRY_MAX:]:
-        reason[k] += f" (not retried in ball arithmetic: more than {BALL_RETRY_MAX} such roots)"
+    for k in capped:
+        reason[k] += f" (not retried in ball arithmetic: more than {BALL_RETRY_MAX} such roots in its taut set)"
+    if todo:
+        with FLINT:
+            _ball_proofs(robot, rho, rows, Z, scale, todo, proven, lo, hi, real, nonreal, reason, frame)
     return ComplexRootBoxes(proven, lo, hi, real, nonreal, boxes.center, tuple(reason))
 
 
