@@ -248,8 +248,8 @@ def _hessian_class(inertia, m) -> tuple[str, str | None]:
 
 
 def _robot_balls(robot, frame=None):
-    """(A_i, b'_i, g') of all n cables as balls: exact, or in the ``frame`` (c, cb) of :attr:`Robot.cable_frame` (A_i - c,
-    b'_i - cb, g' - cb, the differences enclosed)."""
+    """(A_i, b'_i, g') of all n cables as balls: exact, or in the ``frame`` (c, cb) of :attr:`Robot.cable_frame`
+    (A_i - c, b'_i - cb, g' - cb, the differences enclosed)."""
     return _robot_data(robot, range(robot.n), arb, frame=frame)[:3]
 
 

@@ -8,10 +8,11 @@ Study coordinates and tracks it again along the same parameter path (the same se
 homotopy is drawn from the same seed), so it follows the same solution curve in other coordinates and ends on that
 path's own endpoint.  A path whose new run ends regular, or ``singular`` by its condition number alone (a limit
 on one sheet at a pose, :func:`_limit_of_one_sheet`), is kept when its endpoint, mapped back, converges under
-Newton's method in the taut system to ``RESIDUAL_TOL`` and is distinct from every other path's regular endpoint (``endgame.coincides_with_any`` at
-the endgame's cluster tolerance, the detour retry's test; a coincidence means a jump of one of them: the path stays
-failed, nothing is merged); every other path keeps its outcome.  Its endpoint is then
-certified like any other (the DGP's endpoint certificates, in the taut system).
+Newton's method in the taut system to ``RESIDUAL_TOL`` and is distinct from every other path's regular endpoint
+(``endgame.coincides_with_any`` at the endgame's cluster tolerance, the detour retry's test; a coincidence means a jump
+of one of them: the path stays failed, nothing is merged); a path whose new run ends on the quadric N = 0 is at
+infinity (below); every other path keeps its outcome.  A kept endpoint is then certified like any other (the DGP's
+endpoint certificates, in the taut system).
 
 Measured (fifteenth session, Berti et al. 2016 Test 3, taut set {2, 3, 4, 5}, 13 failed paths in (p, u, v, w, lam)):
 with the generic engine tracking all 216 paths in Study parameters 213 end regular; the 10 former failures among
