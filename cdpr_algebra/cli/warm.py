@@ -29,6 +29,7 @@ def warm_kernels(robot) -> dict:
     from cdpr_algebra.bp.search import interval_dgp
     from cdpr_algebra.dgp.solve import dgp
     from cdpr_algebra.dgp.study_retrack import warm_study_kernels
+    from cdpr_algebra.dgp.taut_system import fast_family
     from cdpr_algebra.track.follow import track
     from cdpr_algebra.track.trajectory import straight
 
@@ -38,6 +39,8 @@ def warm_kernels(robot) -> dict:
     t0 = time.perf_counter()
     dgp(robot, jobs=1)
     warm_study_kernels()  # the re-tracking of failed paths, which a robot without them never reaches
+    fam = fast_family(2)  # dF/dp of the taut family (monodromy, trace tests), which the DGP's compiled tracker skips
+    fam.evaluate_all(np.ones(fam.n, dtype=complex), np.ones(fam.m, dtype=complex))
     seconds["dgp"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     interval_dgp(robot, max_m=3)
