@@ -165,14 +165,17 @@ def _limit_of_one_sheet(q, o) -> bool:
     """A Study path ``q`` that the endgame (options ``o``) ended ``singular`` only by its condition number: its Cauchy
     estimate converged on one sheet (winding number 1, accuracy within ``DECENT_ACCURACY``) to a point that solves
     the Study system (relative residual <= ``o.finite_residual``) and whose N = e . e is nonzero beyond that
-    accuracy (``o.infinity_margin`` times it: a pose, not a point of N = 0)."""
-    from cdpr_algebra.homotopy.endgame import DECENT_ACCURACY
+    accuracy (the endgame's own test of a limit at infinity, :func:`cdpr_algebra.homotopy.endgame.decide_in_chart` on
+    ``FastStudySystem.infinity_coordinate``: a pose, not a point of N = 0)."""
+    from cdpr_algebra.homotopy.endgame import DECENT_ACCURACY, decide_in_chart
 
     if q.status != SINGULAR or q.winding_number != 1 or not (q.residual <= o.finite_residual):
         return False
     if not (np.isfinite(q.accuracy) and q.accuracy <= DECENT_ACCURACY):
         return False
-    return bool(abs(FastStudySystem.infinity_coordinate(q.endpoint)[0]) > o.infinity_margin * max(q.accuracy, 1e-14))
+    zero, _, _ = decide_in_chart(q.endpoint[None], np.array([q.accuracy]), o=o,
+                                 coordinate=FastStudySystem.infinity_coordinate)
+    return not bool(zero[0])
 
 
 def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutions, target, seed: int, gamma: bool,

@@ -416,17 +416,15 @@ def decide_in_chart(Y, accuracy, ylast=None, yprev=None, o: EndgameOptions = End
     Y = np.atleast_2d(Y)
     acc = o.infinity_margin * np.maximum(np.where(np.isfinite(accuracy), accuracy, np.inf), 1e-14)
     order = np.full(len(Y), np.nan)
-    if coordinate is None:
-        zero = np.abs(Y[:, 0]) <= acc * np.max(np.abs(Y), axis=1)
+    if coordinate is None:  # y0, measured against |Y*| (a chart point's size)
+        coordinate, scale = (lambda Z: Z[:, 0]), np.max(np.abs(Y), axis=1)
     else:
-        zero = np.abs(coordinate(Y)) <= acc
+        scale = 1.0
+    zero = np.abs(coordinate(Y)) <= acc * scale
     if ylast is None:
         return zero, np.zeros(len(Y), dtype=bool), order
     with np.errstate(all="ignore"):
-        if coordinate is None:
-            v = np.log(np.abs(ylast[:, 0]) / np.abs(yprev[:, 0])) / np.log(o.sample_ratio)
-        else:
-            v = np.log(np.abs(coordinate(ylast)) / np.abs(coordinate(yprev))) / np.log(o.sample_ratio)
+        v = np.log(np.abs(coordinate(ylast)) / np.abs(coordinate(yprev))) / np.log(o.sample_ratio)
     shown = np.isfinite(v) & (v >= o.min_order)
     order[zero & shown] = v[zero & shown]
     return zero & shown, zero & ~shown, order
