@@ -36,6 +36,7 @@ import numpy as np
 
 import numba as nb
 from numba import types as nbt
+from numba.core.types.function_type import WrapperAddressProtocol
 
 from .double_double import RESIDUAL_SIG, cc_add, cc_mul, cc_sub, dd_parameters, to_complex, to_dd
 
@@ -316,6 +317,43 @@ def residual_dd_batch(fres, hom, X, P1, P0, G, T, out):
             out[i, k] = F[k]
 
 
+class _FunctionAddress(WrapperAddressProtocol):
+    """A compiled function passed to the kernels by its address (numba's wrapper address protocol), looked up once.
+
+    Why.  numba unboxes a dispatcher passed as a first-class function argument by looking up its compile result
+    and both its addresses on every call of the kernel (about 10 lookups of ~40 us per :func:`track_kernel` call:
+    7 s of 159 on seed 002's serial DGP, measured).  This object gives the wrapper's address at once; the kernels
+    then call the function through numba's C wrapper of it.  It keeps the dispatcher alive."""
+
+    def __init__(self, dispatcher, signature):
+        from numba.experimental.function_type import _get_wrapper_address
+
+        self.dispatcher = dispatcher
+        self._signature = signature
+        self._address = _get_wrapper_address(dispatcher, signature)
+
+    def __wrapper_address__(self):
+        return self._address
+
+    def signature(self):
+        return self._signature
+
+
+_ADDRESSES: dict = {}
+
+
+def function_address(func, signature):
+    """``func`` (a numba dispatcher) as a :class:`_FunctionAddress` of ``signature`` (cached); other objects as
+    they are."""
+    if not isinstance(func, nb.core.registry.CPUDispatcher):
+        return func
+    key = (id(func), str(signature))
+    got = _ADDRESSES.get(key)
+    if got is None or got.dispatcher is not func:
+        got = _ADDRESSES[key] = _FunctionAddress(func, signature)
+    return got
+
+
 def _compiled_parts(homotopy):
     """(fj, fjt, factor, apply, hom, fres) of a homotopy for the compiled tracker: its system's kernels, whether the
     system is homogenized on a chart, and its double-double residual (None when it offers none); None without
@@ -326,7 +364,9 @@ def _compiled_parts(homotopy):
         return None
     get = getattr(homotopy, "compiled_residual_dd", None)
     fres = get() if get is not None else None
-    return (*kern[:4], bool(kern[4]) if len(kern) > 4 else False, fres)
+    fj, fjt, factor, apply = (function_address(f, t.signature) for f, t in zip(kern[:4], (_FJ, _FJT, _FACTOR, _APPLY)))
+    fres = None if fres is None else function_address(fres, RESIDUAL_SIG)
+    return fj, fjt, factor, apply, bool(kern[4]) if len(kern) > 4 else False, fres
 
 
 def residual_dd(homotopy):
@@ -616,7 +656,7 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
     Hout = np.empty(N)
     used = np.zeros(N, dtype=bool)
     if N:
-        track_kernel(fj, fjt, factor, apply, no_residual_dd if fres is None else fres, hom, X, P1, P0, G, TA, TB, H0,
+        track_kernel(fj, fjt, factor, apply, function_address(no_residual_dd, RESIDUAL_SIG) if fres is None else fres, hom, X, P1, P0, G, TA, TB, H0,
                      opts, Xout, S, st, steps, Hout, used)
     names = np.array([S_RUN, SUCCESS, S_SMALL, S_MANY, S_DIV], dtype=object)
     return SegmentResult(x=Xout, s=S, t=TA + S * (TB - TA), status=names[st], steps=steps, h=Hout, extended=used)
