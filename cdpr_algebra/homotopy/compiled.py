@@ -36,7 +36,6 @@ import numpy as np
 
 import numba as nb
 from numba import types as nbt
-from numba.core.types.function_type import WrapperAddressProtocol
 
 from .double_double import RESIDUAL_SIG, cc_add, cc_mul, cc_sub, dd_parameters, to_complex, to_dd
 
@@ -317,40 +316,45 @@ def residual_dd_batch(fres, hom, X, P1, P0, G, T, out):
             out[i, k] = F[k]
 
 
-class _FunctionAddress(WrapperAddressProtocol):
-    """A compiled function passed to the kernels by its address (numba's wrapper address protocol), looked up once.
+class _FunctionAddress:
+    """A compiled function passed to the kernels by the address of numba's C wrapper of it, looked up once, with its
+    numba type given as ``_numba_type_`` (numba's typeof protocol) and its address by ``__wrapper_address__``
+    (numba's wrapper address protocol; :class:`numba.core.types.function_type.CompileResultWAP` computes it).
 
     Why.  numba unboxes a dispatcher passed as a first-class function argument by looking up its compile result
-    and both its addresses on every call of the kernel (about 10 lookups of ~40 us per :func:`track_kernel` call:
-    7 s of 159 on seed 002's serial DGP, measured).  This object gives the wrapper's address at once; the kernels
-    then call the function through numba's C wrapper of it.  It keeps the dispatcher alive."""
+    and both its addresses on every call of the kernel, and types any wrapper-address object by building a new
+    FunctionType from its signature (a few hundred us per :func:`track_kernel` call with five functions; the
+    DGP's endgame and detours make thousands of calls with few paths: 15,677 on seed 002's serial DGP).
+    ``benchmarks/bench_segment_call.py`` measures the cost of a call.  It keeps the dispatcher alive."""
 
-    def __init__(self, dispatcher, signature):
-        from numba.experimental.function_type import _get_wrapper_address
+    __slots__ = ("dispatcher", "_numba_type_", "_address")
+
+    def __init__(self, dispatcher, fntype):
+        from numba.core.types.function_type import CompileResultWAP
 
         self.dispatcher = dispatcher
-        self._signature = signature
-        self._address = _get_wrapper_address(dispatcher, signature)
+        self._numba_type_ = fntype
+        self._address = CompileResultWAP(dispatcher.get_compile_result(fntype.signature)).address
 
     def __wrapper_address__(self):
         return self._address
 
     def signature(self):
-        return self._signature
+        return self._numba_type_.signature
 
 
 _ADDRESSES: dict = {}
 
 
-def function_address(func, signature):
-    """``func`` (a numba dispatcher) as a :class:`_FunctionAddress` of ``signature`` (cached); other objects as
-    they are."""
+def function_address(func, fntype):
+    """``func`` (a numba dispatcher) as a :class:`_FunctionAddress` of the first-class function type ``fntype``
+    (cached per dispatcher and type); other objects as they are."""
     if not isinstance(func, nb.core.registry.CPUDispatcher):
         return func
-    key = (id(func), str(signature))
+    key = (id(func), id(fntype))
     got = _ADDRESSES.get(key)
     if got is None or got.dispatcher is not func:
-        got = _ADDRESSES[key] = _FunctionAddress(func, signature)
+        got = _ADDRESSES[key] = _FunctionAddress(func, fntype)
     return got
 
 
@@ -364,8 +368,8 @@ def _compiled_parts(homotopy):
         return None
     get = getattr(homotopy, "compiled_residual_dd", None)
     fres = get() if get is not None else None
-    fj, fjt, factor, apply = (function_address(f, t.signature) for f, t in zip(kern[:4], (_FJ, _FJT, _FACTOR, _APPLY)))
-    fres = None if fres is None else function_address(fres, RESIDUAL_SIG)
+    fj, fjt, factor, apply = (function_address(f, t) for f, t in zip(kern[:4], (_FJ, _FJT, _FACTOR, _APPLY)))
+    fres = None if fres is None else function_address(fres, _RES)
     return fj, fjt, factor, apply, bool(kern[4]) if len(kern) > 4 else False, fres
 
 
@@ -656,7 +660,7 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
     Hout = np.empty(N)
     used = np.zeros(N, dtype=bool)
     if N:
-        track_kernel(fj, fjt, factor, apply, function_address(no_residual_dd, RESIDUAL_SIG) if fres is None else fres, hom, X, P1, P0, G, TA, TB, H0,
+        track_kernel(fj, fjt, factor, apply, function_address(no_residual_dd, _RES) if fres is None else fres, hom, X, P1, P0, G, TA, TB, H0,
                      opts, Xout, S, st, steps, Hout, used)
     names = np.array([S_RUN, SUCCESS, S_SMALL, S_MANY, S_DIV], dtype=object)
     return SegmentResult(x=Xout, s=S, t=TA + S * (TB - TA), status=names[st], steps=steps, h=Hout, extended=used)
