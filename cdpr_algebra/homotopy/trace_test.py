@@ -476,20 +476,21 @@ def complete_witnesses(slice_, l, W, options: TraceTestOptions | None = None, se
 def _mp_newton(system, parameters, Y, idx, dps: int = 40, iterations: int = 8):
     """Points Y[idx] refined by Newton's method in arbitrary precision (mpmath, ``dps`` digits, the system's
     ``mp_functions``), rounded back to double.  Returns (Y with them replaced, converged mask over idx): converged
-    when the last update is below 10^-(dps - 5) relative (a simple root; Newton stalls at a multiple one)."""
+    when the last update is below 10^-(dps - 5) relative (a simple root; Newton stalls at a multiple one).  The
+    Newton update is solved by python-flint (:func:`_flint_newton_update`)."""
     import mpmath
+    from flint import ctx
 
     Y = np.array(Y, dtype=complex, copy=True)
     ok = np.zeros(len(idx), dtype=bool)
     mF, mJ, _ = system.mp_functions()
-    with mpmath.workdps(dps):
+    with mpmath.workdps(dps), ctx.workprec(mpmath.mp.prec + 8):
         pm = [mpmath.mpc(complex(c)) for c in np.asarray(parameters, dtype=complex)]
         for k, i in enumerate(idx):
             y = mpmath.matrix([mpmath.mpc(complex(c)) for c in Y[i]])
             for _ in range(iterations):
-                try:
-                    d = mpmath.lu_solve(mJ(y, pm), -mF(y, pm))
-                except ZeroDivisionError:  # singular Jacobian in mpmath's elimination
+                d = _flint_newton_update(mJ(y, pm), mF(y, pm))
+                if d is None:  # singular Jacobian
                     break
                 y = y + d
                 if mpmath.norm(d) <= mpmath.mpf(10) ** (-(dps - 5)) * (1 + mpmath.norm(y)):
@@ -497,6 +498,31 @@ def _mp_newton(system, parameters, Y, idx, dps: int = 40, iterations: int = 8):
                     break
             Y[i] = np.array([complex(c) for c in y])
     return Y, ok
+
+
+def _flint_newton_update(J, F):
+    """-J^{-1} F for an mpmath matrix J and vector F, solved by python-flint in midpoint arithmetic at its working
+    precision (``acb_mat.solve(..., algorithm="approx")``: Newton's update needs no error bound), as an mpmath vector;
+    None when J is singular.  Measured: 10x faster than ``mpmath.lu_solve`` on 20 x 20 at 40 digits, conversions
+    included (mpmath's elimination took 17.6 s of the 41 s of the m = 4 witness test under the profiler)."""
+    import mpmath
+    from flint import acb, acb_mat
+
+    n = J.rows
+    A = acb_mat([[acb(J[r, c]) for c in range(J.cols)] for r in range(n)])
+    B = acb_mat([[acb(-F[r])] for r in range(n)])
+    try:
+        X = A.solve(B, algorithm="approx")
+    except ZeroDivisionError:
+        return None
+    out = []
+    for r in range(n):
+        z = X[r, 0]
+        re, im = z.real.mid().man_exp(), z.imag.mid().man_exp()
+        if not (z.real.is_finite() and z.imag.is_finite()):
+            return None
+        out.append(mpmath.mpc(mpmath.mpf((int(re[0]), int(re[1]))), mpmath.mpf((int(im[0]), int(im[1])))))
+    return mpmath.matrix(out)
 
 
 def polish(system, parameters, Y, threshold: float = 1e6, dps: int = 40, iterations: int = 8):
