@@ -16,16 +16,6 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 
-# One BLAS thread per process (unless the caller chose otherwise).  The suite runs two xdist workers on two cores,
-# and its DGP tests start two threads each and its sweep tests dask worker processes: OpenBLAS's own threads, which
-# spin while they wait, then compete for the same cores.  Set here, in the process that loads this file first (the
-# xdist controller), before the workers and their child processes start, so that they inherit it.  Measured in a
-# fresh clone (seventeenth session, 2 cores): pytest 8 min 07 s, 14:24 of user CPU -> 5 min 57 s, 10:37; Test 2's
-# DGP setup 72 -> 24 s, the local-cluster sweep test 53 -> under 11 s; alone, Test 2's DGP takes the same time
-# either way (17-20 s).
-for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
-    os.environ.setdefault(_var, "1")
-
 
 def _reuse_installed_kernel_caches():
     """Copy the numba caches (``__pycache__/*.nbi``, ``*.nbc``) of an installed cdpr_algebra into this tree, next to
