@@ -659,8 +659,9 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
     steps = np.empty(N, dtype=np.int64)
     Hout = np.empty(N)
     used = np.zeros(N, dtype=bool)
+    if fres is None:
+        fres = function_address(no_residual_dd, _RES)
     if N:
-        track_kernel(fj, fjt, factor, apply, function_address(no_residual_dd, _RES) if fres is None else fres, hom, X, P1, P0, G, TA, TB, H0,
-                     opts, Xout, S, st, steps, Hout, used)
+        track_kernel(fj, fjt, factor, apply, fres, hom, X, P1, P0, G, TA, TB, H0, opts, Xout, S, st, steps, Hout, used)
     names = np.array([S_RUN, SUCCESS, S_SMALL, S_MANY, S_DIV], dtype=object)
     return SegmentResult(x=Xout, s=S, t=TA + S * (TB - TA), status=names[st], steps=steps, h=Hout, extended=used)

@@ -518,9 +518,9 @@ def _flint_newton_update(J, F):
     out = []
     for r in range(n):
         z = X[r, 0]
-        re, im = z.real.mid().man_exp(), z.imag.mid().man_exp()
         if not (z.real.is_finite() and z.imag.is_finite()):
             return None
+        re, im = z.real.mid().man_exp(), z.imag.mid().man_exp()
         out.append(mpmath.mpc(mpmath.mpf((int(re[0]), int(re[1]))), mpmath.mpf((int(im[0]), int(im[1])))))
     return mpmath.matrix(out)
 
