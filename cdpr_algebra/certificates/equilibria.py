@@ -606,10 +606,13 @@ def _compiled_krawczyk(rho, rows, f_iv, constants):
     :mod:`cdpr_algebra.generated.taut_equations_intervals`), with the constants of :func:`certify_endpoints`
     (``constants``: the enclosed (A, b, g) of :func:`_frame_constants`; rho_i^2 and Q d enclosed).  Same operator
     as the interval objects, without the GIL."""
-    from cdpr_algebra.generated.taut_equations_intervals import taut_equations as ev, taut_residual as res
+    from cdpr_algebra.generated.taut_equations_intervals import taut_equations, taut_residual
+    from cdpr_algebra.homotopy.compiled import function_address
     from cdpr_algebra.intervals.arithmetic import Interval
-    from cdpr_algebra.intervals.complex_kernels import krawczyk_kernel
+    from cdpr_algebra.intervals.complex_kernels import EVALUATOR_TYPE, krawczyk_kernel
 
+    # the evaluators by their addresses, looked up once (as the tracker's: homotopy.compiled.function_address)
+    ev, res = function_address(taut_equations, EVALUATOR_TYPE), function_address(taut_residual, EVALUATOR_TYPE)
     m = rows.shape[1]
     A, b, g = constants
     rho2 = [Interval.point(rho[rows[:, i]]).sqr() for i in range(m)]

@@ -23,7 +23,7 @@ from numba import types as nbt
 from .arithmetic import _INF
 from .scalar_kernels import rounding_gamma, s_add, s_down, s_mid, s_midrad, s_mr_bound, s_mul, s_sub, s_up
 
-__all__ = ["OPERATIONS", "EVALUATOR_SIG", "krawczyk_kernel"]
+__all__ = ["OPERATIONS", "EVALUATOR_SIG", "EVALUATOR_TYPE", "krawczyk_kernel"]
 
 _J = dict(cache=True, error_model="numpy")
 
@@ -154,7 +154,7 @@ _C2 = nbt.float64[:, ::1]
 _C3 = nbt.float64[:, :, ::1]
 # (x, p, dp, F, J, Ht, with_ht) of a rewritten generated evaluator (x: n complex intervals, p: the parameters)
 EVALUATOR_SIG = nbt.void(_C2, _C2, _C2, _C2, _C3, _C2, nbt.boolean)
-_EVAL = nbt.FunctionType(EVALUATOR_SIG)
+EVALUATOR_TYPE = nbt.FunctionType(EVALUATOR_SIG)  # numba type of such an evaluator passed as an argument
 
 
 @nb.njit(cache=True, error_model="numpy")
@@ -179,7 +179,7 @@ def _mr_product(Am, Ar, Bm, Br, with_ar, lo, hi):
             lo[i, j], hi[i, j] = s_mr_bound(S1[i, j], s2, S3[i, j] + s2, g, k)
 
 
-@nb.njit(nbt.void(_EVAL, _EVAL, nbt.float64[:, ::1], nbt.float64[:, ::1], nbt.float64[:, :, ::1],
+@nb.njit(nbt.void(EVALUATOR_TYPE, EVALUATOR_TYPE, nbt.float64[:, ::1], nbt.float64[:, ::1], nbt.float64[:, :, ::1],
                   nbt.float64[:, ::1], nbt.float64[:, ::1], nbt.boolean[::1]),
          cache=True, error_model="numpy", nogil=True)
 def krawczyk_kernel(jac, res, Y, R, P, Klo, Khi, ok):
