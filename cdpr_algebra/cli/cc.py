@@ -36,12 +36,9 @@ import sys
 import time
 from dataclasses import replace
 
-import numpy as np
-
 from cdpr_algebra.model.errors import CdprInputError
 
 from .common import INCOMPLETE, as_flags, finite
-from cdpr_algebra.report.jsonable import jsonable
 
 
 def add_parser(subparsers) -> None:
@@ -69,7 +66,8 @@ def add_parser(subparsers) -> None:
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
 
 
-def _rotation(args) -> tuple[np.ndarray, list]:
+def _rotation(args) -> tuple:
+    import numpy as np  # here, not with the module: ``cdpr --help`` imports every command's module
     from cdpr_algebra.model.pose import matrix_from_angles
 
     angles = [0.0, 0.0, 0.0] if args.angles is None else list(args.angles)
@@ -115,6 +113,7 @@ def _entry(cc, radii=None, safety=None, unc=None) -> dict:
 
 
 def _pose(args, robot, R) -> tuple[list, dict]:
+    import numpy as np  # here, not with the module: ``cdpr --help`` imports every command's module
     from cdpr_algebra.cc.radii import cc_radii_many
     from cdpr_algebra.cc.configurations import configuration_tensions, parse_cables, rank_configurations, valid_configurations
 
@@ -206,6 +205,7 @@ def _safe_cell(e) -> str:
 
 
 def _table(entries, head) -> str:
+    import numpy as np  # here, not with the module: ``cdpr --help`` imports every command's module
     from cdpr_algebra.report.tables import format_table
 
     def fmt(v):
@@ -258,6 +258,8 @@ def run(args) -> int:
 
 
 def _run(args) -> int:
+    from cdpr_algebra.report.jsonable import jsonable  # here, not with the module: it imports numpy
+
     from cdpr_algebra.model.robot import load_robot
 
     t0 = time.perf_counter()

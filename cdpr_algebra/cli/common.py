@@ -6,8 +6,6 @@ from __future__ import annotations
 import argparse
 import math
 
-import numpy as np
-
 from cdpr_algebra.model.errors import CdprInputError
 
 __all__ = ["INCOMPLETE", "Parser", "finite", "dgp_lengths", "as_flags", "print_incomplete"]
@@ -48,8 +46,11 @@ def finite(name):
     return conv
 
 
-def dgp_lengths(args, robot) -> np.ndarray:
-    """The DGP's cable lengths: ``--lengths`` (checked) or the robot file's (used by dgp, plot and crosscheck)."""
+def dgp_lengths(args, robot):
+    """The DGP's cable lengths (numpy array): ``--lengths`` (checked) or the robot file's (used by dgp, plot and
+    crosscheck).  numpy is imported here, not with the module: ``cdpr --help`` needs none of it."""
+    import numpy as np
+
     if args.lengths is not None:
         if len(args.lengths) != robot.n:
             raise CdprInputError("--lengths", f"expected {robot.n} cable lengths, got {len(args.lengths)}")

@@ -24,8 +24,6 @@ from __future__ import annotations
 import json
 import sys
 
-import numpy as np
-
 from cdpr_algebra.model.errors import CdprInputError
 
 from .common import finite
@@ -49,6 +47,7 @@ def add_parser(subparsers) -> None:
 
 
 def run(args) -> int:
+    import numpy as np  # here, not with the module: ``cdpr --help`` imports every command's module
     from cdpr_algebra.comparison.compare import crosscheck, crosscheck_table, exit_status
     from cdpr_algebra.model.robot import load_robot
 

@@ -5,8 +5,6 @@ from __future__ import annotations
 
 import json
 
-import numpy as np
-
 from cdpr_algebra.model.errors import CdprInputError
 
 from .common import finite
@@ -47,6 +45,7 @@ def _exact_rotation(angles_deg):
 
 
 def run(args) -> int:
+    import numpy as np  # here, not with the module: ``cdpr --help`` imports every command's module
     from cdpr_algebra.model.pose import matrix_from_angles
     from cdpr_algebra.model.robot import load_robot
     from cdpr_algebra.report.tables import igp_table

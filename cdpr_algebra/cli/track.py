@@ -25,8 +25,6 @@ from __future__ import annotations
 import json
 import sys
 
-import numpy as np
-
 from cdpr_algebra.model.errors import CdprInputError
 
 from .common import INCOMPLETE, as_flags, dgp_lengths, finite
@@ -60,6 +58,7 @@ def add_parser(subparsers) -> None:
 
 
 def run(args) -> int:
+    import numpy as np  # here, not with the module: ``cdpr --help`` imports every command's module
     from cdpr_algebra.model.robot import load_robot
     from cdpr_algebra.track.follow import track, tracking_table
     from cdpr_algebra.track.trajectory import load_trajectory, straight
