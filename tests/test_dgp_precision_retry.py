@@ -1,23 +1,44 @@
-"""Issue 4, item 4: with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), paths that fail in double
-precision are tracked in arbitrary precision before anything is reported.
+"""Issue 4, item 4 and issue 15: with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), paths that every
+double-precision retry left failed are tracked again in arbitrary precision before anything is reported: in Study
+parameters, by :func:`cdpr_algebra.homotopy.flint_tracker.hybrid_track` (python-flint wherever double precision
+fails; :mod:`cdpr_algebra.dgp.study_retrack`).
 
-Forced here: every double-precision attempt (affine and projective) of one path of a 2-cable subproblem of seed 000
-Test 1 reports a failed step; the subproblem still reports every solution of an ordinary run, and no failed path.
+Forced here: every double-precision attempt (affine, projective, Study) of one path of a 2-cable subproblem of seed
+000 Test 1 reports a failed step at its first step, and so does the hybrid tracker's first double-precision stretch,
+which hands the path to the arbitrary-precision tracker; the subproblem still reports every solution of an ordinary
+run, and no failed path.
 """
 
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 import cdpr_algebra.homotopy.endgame as eg
+import cdpr_algebra.homotopy.flint_tracker as ft
+import cdpr_algebra.homotopy.tracker as tk
 from cdpr_algebra.dgp.solve import _generic, default_options, solve_taut_set
+from cdpr_algebra.dgp.study_retrack import STUDY_FLINT
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from cdpr_algebra.homotopy.results import STEP_TOO_SMALL
 from cdpr_algebra.model.robot import load_robot
+from dataclasses import replace
 
 ROOT = Path(__file__).resolve().parents[1]
+
+
+def _failing_at_the_start(real, which):
+    """``real`` (a track_segment) with the paths ``which(x0)`` of every call from t = 1 failed at once (their start
+    point, t = 1)."""
+    def failing(homotopy, x0, t_a, t_b, options=None, h0=None):
+        r = real(homotopy, x0, t_a, t_b, options, h0)
+        if np.all(np.asarray(t_a) == 1.0):
+            bad = which(np.asarray(x0))
+            status, x, t = r.status.copy(), r.x.copy(), np.array(r.t, dtype=complex, copy=True)
+            status[bad], x[bad], t[bad] = STEP_TOO_SMALL, np.asarray(x0)[bad], 1.0
+            r = type(r)(x=x, s=r.s, t=t, status=status, steps=r.steps, h=r.h)
+        return r
+    return failing
 
 
 @pytest.mark.slow
@@ -29,30 +50,29 @@ def test_failed_path_is_tracked_in_arbitrary_precision(monkeypatch):
     assert sub0.paths == 24
     assert sub0.failed_paths == 0
     _, X = _generic(2)
-    real_segment = eg.track_segment
-    calls = {"mp": 0}
-    real_mp = eg.mp_track
 
-    def failing(homotopy, x0, t_a, t_b, options=None, h0=None):
-        r = real_segment(homotopy, x0, t_a, t_b, options, h0)
-        if np.all(np.asarray(t_a) == 1.0):
-            x0 = np.asarray(x0)
-            # the path from the first stored start point, in affine coordinates or re-tracked projectively
-            bad = np.all(np.isclose(x0, X[0]), axis=1) if x0.shape[1] == X.shape[1] else np.ones(len(x0), bool)
-            status = r.status.copy()
-            status[bad] = STEP_TOO_SMALL
-            r = type(r)(x=r.x, s=r.s, t=r.t, status=status, steps=r.steps, h=r.h)
-        return r
+    def first_or_study(x0):  # the path from the first stored start point; any path in other coordinates
+        return np.all(np.isclose(x0, X[0]), axis=1) if x0.shape[1] == X.shape[1] else np.ones(len(x0), bool)
 
-    def counting_mp(*a, **k):
-        calls["mp"] += 1
-        return real_mp(*a, **k)
+    monkeypatch.setattr(eg, "track_segment", _failing_at_the_start(eg.track_segment, first_or_study))
+    sub1, _ = solve_taut_set(robot, rho, cables, certify=False, exclude=False)
+    assert sub1.failed_paths == 1  # forced: without the retry, the path fails
 
-    monkeypatch.setattr(eg, "track_segment", failing)
-    monkeypatch.setattr(eg, "mp_track", counting_mp)  # the arbitrary-precision tracker behind eg.mp_path
+    calls = {"flint": 0, "flint_steps": 0}
+    real_flint = ft.flint_track
+
+    def counting_flint(*a, **k):
+        seg = real_flint(*a, **k)
+        calls["flint"] += 1
+        calls["flint_steps"] += seg.steps
+        return seg
+
+    monkeypatch.setattr(ft, "flint_track", counting_flint)
+    monkeypatch.setattr(tk, "track_segment", _failing_at_the_start(tk.track_segment, lambda x0: np.ones(len(x0), bool)))
     sub, sols = solve_taut_set(robot, rho, cables, certify=False, options=replace(default_options(), retry_mpmath=True),
                                exclude=False)
-    assert calls["mp"] == 1  # the one path, once
+    assert calls["flint"] >= 1 and calls["flint_steps"] > 0  # the path went through arbitrary precision
+    assert sub.retried.get(STUDY_FLINT) == 1
     assert sub.failed_paths == 0 and sub.finite == sub0.finite and sub.real == sub0.real
     assert len(sols) == len(sols0)
     for a, b in zip(sorted(sols, key=lambda s: tuple(s.position)), sorted(sols0, key=lambda s: tuple(s.position))):

@@ -23,8 +23,9 @@ def add_parser(subparsers) -> None:
                           "large complex solutions, near the singular sets at infinity): far fewer failed paths and "
                           "incomplete subproblems, in about twice the time")
     dgp.add_argument("--mpmath-retry", action="store_true",
-                     help="track up to 4 paths per subproblem that fail in double precision again in arbitrary "
-                          "precision (slow: seconds to minutes per path)")
+                     help="track up to 4 paths per subproblem that every double-precision retry left failed once "
+                          "more, in arbitrary precision (python-flint) wherever double precision fails (slow: "
+                          "seconds per path, up to about a minute)")
     dgp.add_argument("--settle", action="store_true",
                      help="run the interval branch and prune on every incomplete subproblem: where it is complete it "
                           "proves the subproblem's admissible equilibria (and adds any the homotopy missed); the exit "

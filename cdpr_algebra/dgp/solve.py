@@ -41,9 +41,10 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   again in Study parameters along the same parameter path (``STUDY_RETRACK``, :mod:`.study_retrack`: near-isotropic
   complex rotations are ordinary points there; kept only as distinct regular roots of the taut system).  If one or two failed
   paths remain (at most ``RERUN_MAX_FAILED``), the subproblem is re-run once with a random gamma and another seed,
-  and the run with fewer failures is kept; with ``retry_mpmath`` in the options, paths still failed are also tracked in arbitrary precision
-  (mpmath, 30 digits, at most ``MP_RETRY_PATHS`` = 4 paths per run: seconds to minutes per path, so off by
-  default).  Every path ends with one outcome (``regular``, ``singular``, ``at_infinity``,
+  and the run with fewer failures is kept; with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), the
+  paths that the Study re-track leaves failed are tracked once more in Study parameters, in arbitrary precision
+  (python-flint, 106 bits) wherever double precision fails (:func:`.study_retrack._rescue_in_arbitrary_precision`:
+  at most ``MP_RETRY_PATHS`` = 4 paths per run, seconds each, so off by default).  Every path ends with one outcome (``regular``, ``singular``, ``at_infinity``,
   ``failed`` with its reason), counted per subproblem (``outcomes``, ``failures``); a subproblem is
   ``complete`` when no path failed and its regular, singular and at-infinity endpoints account for the generic
   count (paths ending on one regular point are failures, ``path_jumping``: a solution is then missing).  A path put
@@ -404,15 +405,16 @@ def _track(m, target, seed, gamma, options=None):
     from cdpr_algebra.homotopy.many_targets import solve_targets
 
     p_gen, X_gen = _generic(m)
-    # no in-place double retries: suspect paths are re-tracked in projective coordinates; in the re-run with a
-    # new gamma (only when failures remain) paths still failed after that are tracked in arbitrary precision
-    # (at most MP_RETRY_PATHS per subproblem: the mpmath tracker is pure Python, seconds to minutes per path).
+    # no in-place double retries: suspect paths are re-tracked in projective coordinates, then in Study parameters;
+    # with retry_mpmath, paths still failed there are tracked in Study parameters in arbitrary precision where
+    # double precision fails (dgp.study_retrack, at most MP_RETRY_PATHS per run), not by the engine's mpmath
+    # tracker in (p, u, v, w, lam) (pure Python: minutes per path, and those paths fail in every precision there).
     # Predictor tolerance PREDICTOR_TOL (default 1e-5): paths from the stored generic set are nonsingular, and any
     # two paths ending on one point are re-tracked with tightened steps (path jumping cannot go unnoticed).
     # The endgame decides finite / at infinity in a projective chart (no norm threshold).
     options = default_options() if options is None else options
-    (res,) = solve_targets(fast_family(m), p_gen, X_gen, [target], seed=seed, options=options, gamma=gamma,
-                           retries=PROJECTIVE_RETRIES)
+    (res,) = solve_targets(fast_family(m), p_gen, X_gen, [target], seed=seed,
+                           options=replace(options, retry_mpmath=False), gamma=gamma, retries=PROJECTIVE_RETRIES)
     res = _tension_infinity_undecided(res, m)
     if STUDY_RETRACK:
         res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, options)

@@ -30,6 +30,16 @@ and sampled further (``EndgameOptions.infinity_verdicts`` off: a re-track keeps 
 needs no verdict at infinity) they end on proven roots too.  Test 2: 123 failed paths -> 4, 12 incomplete subproblems
 -> 4.
 
+With ``retry_mpmath`` in the DGP's options (``cdpr dgp --mpmath-retry``), the Study paths still failed (at most
+``max_mpmath_paths`` a run) are tracked once more from their start points by
+:func:`cdpr_algebra.homotopy.flint_tracker.hybrid_track`: in double precision, and in arbitrary precision (python-flint,
+106 bits, over the same generated evaluator :func:`cdpr_algebra.generated.study_equations.study_equations`) wherever
+double precision fails, to t = 0 without an endgame; an endpoint where Newton's method converges quadratically is
+then kept by the same tests as above (``retried="study_flint"``).  Measured (eighteenth session) on the 16 Study paths
+that Test 3's runs left failed: they crawl near N = 0 (N / |e|^2 ~ 1e-7 .. 1e-5, condition numbers 1e12 .. 1e17)
+where Newton in double precision cannot meet the corrector tolerance; in 106 bits the same step control tracks 11
+of them with ordinary steps (0 .. 3200 of them in arbitrary precision) to regular endpoints (condition 6e2 .. 2e9).
+
 A Study path whose limit lies on the quadric N = 0 (no pose there: R = Q(e) / N, and Q(e) != 0 for e != 0) has its
 pose at infinity: the endgame decides it with ``FastStudySystem.infinity_coordinate`` (N / |e|^2) as it decides
 y0 = 0 in a projective chart (the limit's N within its accuracy of 0, and N(t) ~ t^v, v > 0, at the last two sample
@@ -178,6 +188,48 @@ def _limit_of_one_sheet(q, o) -> bool:
     return not bool(zero[0])
 
 
+STUDY_FLINT = "study_flint"  # the ``retried`` of a path that the Study run in arbitrary precision rescued
+FLINT_CHUNK = 200  # steps in arbitrary precision before double precision is tried again (hybrid_track)
+FLINT_STEPS = 3000  # steps in arbitrary precision per path (about 15 s at ~5 ms a step)
+
+
+def _rescue_in_arbitrary_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts, max_paths: int) -> dict:
+    """The Study paths ``spaths`` (from the start points Y1) of the run from P1 to P0 (seed, gamma: the homotopy is
+    drawn again, as :func:`cdpr_algebra.homotopy.solve.solve_parameter_homotopy` drew it) that failed, at most
+    ``max_paths`` of them, tracked again with :func:`cdpr_algebra.homotopy.flint_tracker.hybrid_track` (double
+    precision, and ``PRECISION`` bits where it fails; at most ``FLINT_STEPS`` such steps per path) to t = te, then on
+    to t = 0 (no endgame: a path that does not reach a regular point there stays failed).  Returns {path: (Study
+    endpoint, steps)} for the paths that reach a point where Newton's method in the Study system converges
+    quadratically with a condition number at most the endgame's ``singular_condition``."""
+    from cdpr_algebra.generated.study_equations import study_equations
+    from cdpr_algebra.homotopy.endgame import refine
+    from cdpr_algebra.homotopy.flint_tracker import FlintParameterHomotopy, hybrid_track
+    from cdpr_algebra.homotopy.start_systems import parameter_homotopy
+
+    bad = [j for j, q in enumerate(spaths) if q.status in FAILURES][:max_paths]
+    if not bad:
+        return {}
+    (hom,) = parameter_homotopy(fast_study_family(m), P1, P0, rng=np.random.default_rng(seed), gamma=gamma)
+    fh = FlintParameterHomotopy.like(hom, study_equations)
+    te, tr = opts.endgame.endgame_start, opts.tracker
+    out = {}
+    for j in bad:
+        y, steps, spent, status = Y1[j], 0, 0, SUCCESS
+        for ta, tb in ((1.0, te), (te, 0.0)):
+            seg = hybrid_track(hom, fh, y, ta, tb, tr, chunk=FLINT_CHUNK, max_flint_steps=FLINT_STEPS - spent)
+            y, status = seg.x, seg.status
+            steps += seg.steps + seg.flint_steps
+            spent += seg.flint_steps
+            if status != SUCCESS:
+                break
+        if status != SUCCESS:
+            continue
+        yr, _, _, cond, quad = refine(hom, y[None], 0.0)
+        if quad[0] and cond[0] <= opts.endgame.singular_condition:
+            out[j] = (yr[0], steps)
+    return out
+
+
 def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutions, target, seed: int, gamma: bool,
                             options=None):
     """``res`` (the :class:`.homotopy.results.SolveResult` of the taut system ``system`` from ``start_solutions`` at
@@ -196,13 +248,20 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     X1 = np.asarray(start_solutions, dtype=complex)[failed]  # path k starts at start solution k
     Y1 = to_study(X1, m, chart)
     opts = _study_options(options)
-    sres = solve_parameter_homotopy(fast_study_family(m), np.concatenate([start_parameters, chart]), Y1,
-                                    np.concatenate([np.asarray(target, dtype=complex), chart]), seed=seed,
-                                    options=opts, gamma=gamma, retries=0)
+    P1 = np.concatenate([start_parameters, chart])
+    P0 = np.concatenate([np.asarray(target, dtype=complex), chart])
+    sres = solve_parameter_homotopy(fast_study_family(m), P1, Y1, P0, seed=seed, options=opts, gamma=gamma, retries=0)
     spaths = sres.track.paths
     ok = [j for j, q in enumerate(spaths) if q.status == SUCCESS or _limit_of_one_sheet(q, opts.endgame)]
+    ends = {j: spaths[j].endpoint for j in ok}
+    flint = {}
+    if options is not None and options.retry_mpmath:  # the paths still failed, in arbitrary precision
+        flint = _rescue_in_arbitrary_precision(m, spaths, Y1, P1, P0, seed, gamma, opts,
+                                               options.max_mpmath_paths)
+        ends.update({j: y for j, (y, _) in flint.items()})
+        ok = sorted(ends)
     with np.errstate(all="ignore"):
-        X0 = from_study(np.array([spaths[j].endpoint for j in ok]).reshape(-1, 8 + m), m)
+        X0 = from_study(np.array([ends[j] for j in ok]).reshape(-1, 8 + m), m)
     finite = np.all(np.isfinite(X0), axis=1)
     ok, X0 = [j for j, f in zip(ok, finite) if f], X0[finite]
     rescued = 0
@@ -216,9 +275,10 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
         if coincides_with_any(regular, x, opts.endgame.cluster_tol):  # the detour retry's test of a new point
             continue
         i = failed[j]
+        extra, how = (flint[j][1], STUDY_FLINT) if j in flint else (0, "study")
         paths[i] = replace(paths[i], status=SUCCESS, endpoint=x, t=0j, residual=float(residual[k]),
                            condition=float(cond[k]), accuracy=float(upd[k]),
-                           steps=paths[i].steps + spaths[j].steps, winding_number=1, retried="study")
+                           steps=paths[i].steps + spaths[j].steps + extra, winding_number=1, retried=how)
         regular.append(x)
         rescued += 1
     for j, q in enumerate(spaths):  # limits on N = 0: the pose is at infinity (FastStudySystem.infinity_coordinate)
