@@ -97,6 +97,9 @@ def run(args) -> int:
         if any(s.failed_paths for s in result.incomplete) and not args.extended_precision:
             print("  (--extended-precision follows ill-conditioned paths with Newton residuals in double-double: "
                   "most failed paths end there, in about twice the time)", file=sys.stderr)
+        if any(s.failed_paths for s in result.incomplete) and not args.mpmath_retry:
+            print("  (--mpmath-retry tracks up to 4 failed paths per subproblem again, in arbitrary precision where "
+                  "double precision fails: seconds to a minute a path)", file=sys.stderr)
         if not args.settle:
             print("  (--settle proves their admissible equilibria by interval branch and prune)", file=sys.stderr)
         return INCOMPLETE
