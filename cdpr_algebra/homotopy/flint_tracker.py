@@ -35,6 +35,7 @@ from .results import STEP_TOO_SMALL, SUCCESS, TOO_MANY_STEPS
 
 __all__ = ["FlintParameterHomotopy", "FlintSegment", "flint_track", "hybrid_track", "PRECISION"]
 
+START_NEWTON = 8  # Newton updates at t_a that put the start point on the path at the working precision
 PRECISION = 106  # bits (double-double's): enough for every path measured above; 128 tracked the same ones
 
 
@@ -137,7 +138,8 @@ def flint_track(h: FlintParameterHomotopy, x0, t_a, t_b, options, prec: int = PR
     max(that of d2, 2^(20 - prec))); the step grows by up to 2.5 (not right after a rejection) and shrinks by 2 .. 10
     on a rejection (:mod:`.tracker`'s rule, ``options.step_safety``).  ``options`` is a
     :class:`.tracker.TrackerOptions`; ``max_steps`` counts accepted and rejected steps; a step below
-    ``options.min_step`` fails with ``step_too_small``."""
+    ``options.min_step`` fails with ``step_too_small``.  x0 is first refined by Newton's method at t_a (at most
+    ``START_NEWTON`` updates)."""
     from flint import acb, ctx
 
     o = options
@@ -155,6 +157,17 @@ def flint_track(h: FlintParameterHomotopy, x0, t_a, t_b, options, prec: int = PR
 
         def done(status):
             return FlintSegment(x=_complex(x), t=complex(ta + acb(s) * dt), status=status, steps=steps)
+
+        # x0 comes from a tracker in double precision that stopped where the condition number reached ~1e17: it may
+        # lie off the path by far more than the predictor tolerance, and then every step would be rejected.
+        for _ in range(START_NEWTON):
+            F, J, _ = h.evaluate_all(x, ta, False)
+            u = _solve(J, [-v for v in F])
+            if u is None:
+                break
+            x = [_mid(a + b) for a, b in zip(x, u)]
+            if _norm(u) <= tol_c * (1.0 + _norm(x)):
+                break
 
         while s < 1.0:
             if steps >= max_steps:
