@@ -18,11 +18,12 @@ growth and shrinking: :mod:`.tracker`), with linear systems solved by ``acb_mat.
 :func:`hybrid_track` tracks in double precision (:func:`.tracker.track_segment`) and hands only the stretches where
 it fails to :func:`flint_track`, ``chunk`` steps at a time, then tries double precision again.
 
-Cost (measured, eighteenth session, m = 4, 12 unknowns, 106 bits): one evaluation 0.7 ms, one solve 0.3 ms, one
-step ~5 ms, against ~10 us in the compiled double tracker.  On the 16 Study paths that seed 000 Test 3's DGP left
-failed (all runs of its subproblems), :func:`hybrid_track` brought 11 to regular endpoints (Newton quadratic,
-condition numbers 6e2 .. 2e9) with 0 .. 3200 steps in arbitrary precision (0 .. 16 s each); the 5 others still
-crawled after 20,000 (about 2 minutes each).
+Cost (measured, eighteenth session, m = 4, 12 unknowns, 106 bits): one evaluation ~0.45 ms, one step ~4 ms (RK4
+and three Newton updates: 7 evaluations, 7 solves), against ~10 us in the compiled double tracker.  On the 16 Study
+paths that seed 000 Test 3's DGP left failed (all runs of its subproblems), a first version of :func:`hybrid_track`
+(without the Newton updates at the start of :func:`flint_track`) brought 11 to regular endpoints (Newton
+quadratic, condition numbers 6e2 .. 2e9) with 0 .. 3200 steps in arbitrary precision; the 5 others still crawled
+after 20,000.
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from flint import acb, acb_mat, ctx  # imported with this module only: nothing on the double-precision path imports it
 
 from .results import STEP_TOO_SMALL, SUCCESS, TOO_MANY_STEPS
 
@@ -40,15 +42,11 @@ PRECISION = 106  # bits (double-double's): enough for every path measured above;
 
 
 def _acb(z):
-    from flint import acb
-
     z = complex(z)
     return acb(z.real, z.imag)
 
 
 def _mid(z):
-    from flint import acb
-
     return acb(z.real.mid(), z.imag.mid())
 
 
@@ -67,18 +65,26 @@ class FlintParameterHomotopy:
         self.p1 = np.asarray(p1, dtype=complex)
         self.p0 = np.asarray(p0, dtype=complex)
         self.gamma = None if gamma is None else complex(gamma)
+        self._acb = None
 
     @classmethod
     def like(cls, homotopy, evaluate) -> "FlintParameterHomotopy":
         """The twin of a :class:`.homotopies.ParameterHomotopy` (same parameter path) over ``evaluate``."""
         return cls(evaluate, homotopy.n, homotopy.neq, homotopy.p1, homotopy.p0, homotopy.gamma)
 
+    def _ends(self):
+        """p1, p0 and p1 - p0 as acb (exact: converted from doubles once)."""
+        if self._acb is None:
+            p1 = [_acb(v) for v in self.p1]
+            p0 = [_acb(v) for v in self.p0]
+            self._acb = (p1, p0, [a - b for a, b in zip(p1, p0)])
+        return self._acb
+
     def parameters_at(self, t):
         """p(t) and dp/dt as lists of acb (at the working precision)."""
-        p1 = [_acb(v) for v in self.p1]
-        p0 = [_acb(v) for v in self.p0]
+        p1, p0, diff = self._ends()
         if self.gamma is None:
-            return [t * a + (1 - t) * b for a, b in zip(p1, p0)], [a - b for a, b in zip(p1, p0)]
+            return [b + t * d for b, d in zip(p0, diff)], diff
         g = _acb(self.gamma)
         s = g * t + (1 - t)
         num = [g * t * a + (1 - t) * b for a, b in zip(p1, p0)]
@@ -88,8 +94,6 @@ class FlintParameterHomotopy:
 
     def evaluate_all(self, x, t, with_ht: bool = True):
         """(F, J, Ht) at the point x (list of acb) and t (acb): object arrays of acb."""
-        from flint import acb
-
         p, dp = self.parameters_at(t)
         F = np.empty(self.neq, dtype=object)
         J = np.empty((self.neq, self.n), dtype=object)
@@ -101,11 +105,10 @@ class FlintParameterHomotopy:
 
 
 def _solve(J, b):
-    """J^{-1} b (midpoints), or None when J is singular at the working precision."""
-    from flint import acb_mat
-
-    A = acb_mat([[_mid(v) for v in row] for row in J])
-    B = acb_mat([[_mid(v)] for v in b])
+    """J^{-1} b (midpoints: the approximate solver works on the midpoints of J and b), or None when J is singular at
+    the working precision."""
+    A = acb_mat(J.tolist() if isinstance(J, np.ndarray) else J)
+    B = acb_mat([[v] for v in b])
     try:
         X = A.solve(B, algorithm="approx")
     except ZeroDivisionError:
@@ -140,8 +143,6 @@ def flint_track(h: FlintParameterHomotopy, x0, t_a, t_b, options, prec: int = PR
     :class:`.tracker.TrackerOptions`; ``max_steps`` counts accepted and rejected steps; a step below
     ``options.min_step`` fails with ``step_too_small``.  x0 is first refined by Newton's method at t_a (at most
     ``START_NEWTON`` updates)."""
-    from flint import acb, ctx
-
     o = options
     with ctx.workprec(prec):
         x = [_acb(v) for v in np.asarray(x0, dtype=complex)]
