@@ -638,7 +638,9 @@ def _solve_work_frame(data, length, form_name="21"):
     # e0 = 0 (Appendix B); there are at most 24 solutions, so 24 distinct ones with e0 = 1 leave none
     found = _dedupe(_rotations_only(found))
     info["e0_zero_branch"] = len(found) < 24
-    for free, cands in (_half_turn_candidates(Q).items() if info["e0_zero_branch"] else ()):
+    if not info["e0_zero_branch"]:  # 24 distinct rotations: all of them (nothing below would add or drop one)
+        return found, info
+    for free, cands in _half_turn_candidates(Q).items():
         if cands.shape[0] == 0:
             continue
         res0 = _residuals(Q, cands)
