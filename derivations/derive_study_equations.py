@@ -12,6 +12,7 @@ code over the cables, common subexpressions shared (sympy.cse):
         study_equations(x, p, dp, F, J, Ht, with_ht)   F, the nonzero pattern of J, and Ht when with_ht
         study_residual(x, p, F)                         F alone
     cdpr_algebra/generated/study_residual_dd.py         study_residual in complex double-double
+    cdpr_algebra/generated/study_equations_dd.py        study_equations in complex double-double
 
 x = (e_0..e_3, g_0..g_3, lam_1..lam_m), p = (A_i (3m), rho_i^2 (m), b'_i (3m), g' (3), Q d (3), c (4)).  Rows: the
 chart, Study's quadric, the m lengths, the force (3) and moment (3) balances.  Compiled by numba on one point
@@ -38,6 +39,7 @@ from cdpr_algebra.model.study_equations import quaternion_product, study_family 
 
 TARGET = "cdpr_algebra/generated/study_equations.py"
 DD_TARGET = "cdpr_algebra/generated/study_residual_dd.py"
+DD_EQUATIONS_TARGET = "cdpr_algebra/generated/study_equations_dd.py"
 POSE = ["e0", "e1", "e2", "e3", "G0", "G1", "G2", "G3"]
 GLOBAL_PARAMS = ["g0", "g1", "g2", "f0", "f1", "f2", "c0", "c1", "c2", "c3"]
 CABLE_PARAMS = ["a0", "a1", "a2", "r2", "b0", "b1", "b2"]
@@ -124,7 +126,9 @@ def generate() -> dict[str, str]:
            "(see its docstring).  Plain arithmetic and indexing: compiled by numba.\n"
            '"""\n')
     return {TARGET: HEADER.format(script=Path(__file__).name) + doc + "\n".join(L + Fo) + "\n",
-            DD_TARGET: _double_double_text("\n".join(Fo) + "\n", _DD_DOC, ("study_residual",))}
+            DD_TARGET: _double_double_text("\n".join(Fo) + "\n", _DD_DOC, ("study_residual",)),
+            DD_EQUATIONS_TARGET: _double_double_text("\n".join(L) + "\n", _DD_EQUATIONS_DOC, ("study_equations",),
+                                                     flags=("with_ht",), sig="EQUATIONS_SIG")}
 
 
 def _prologue(signature: str, doc: list[str]) -> list[str]:
@@ -155,6 +159,13 @@ _DD_DOC = ("The residual F of the DGP equations per taut set in Study parameters
            ":func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source` over complex double-double numbers (values\n"
            "are (re hi, re lo, im hi, im lo); x (8 + m, 4), p (7 m + 10, 4), F (8 + m, 4)), compiled by numba for the\n"
            "extended-precision Newton residual of the compiled tracker (:mod:`cdpr_algebra.homotopy.compiled`).\n")
+
+_DD_EQUATIONS_DOC = (
+    "The DGP equations per taut set in Study parameters in double-double: ``study_equations`` of\n"
+    ":mod:`cdpr_algebra.generated.study_equations` (F, the pattern of J = dF/dx, and Ht = dF/dp . dp with ``with_ht``)\n"
+    "rewritten by :func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source` over complex double-double numbers\n"
+    "(values are (re hi, re lo, im hi, im lo); x (8 + m, 4), p and dp (7 m + 10, 4), F and Ht (8 + m, 4), J (8 + m,\n"
+    "8 + m, 4)), compiled by numba for the double-double path tracker (:mod:`cdpr_algebra.homotopy.dd_tracker`).\n")
 
 
 if __name__ == "__main__":

@@ -272,11 +272,13 @@ def _interval_text(source: str) -> str:
                          [("cdpr_algebra.intervals.complex_kernels", OPERATIONS)], ("taut_equations", "taut_residual"))
 
 
-def _double_double_text(source: str, doc: str | None = None, names=("taut_residual",)) -> str:
+def _double_double_text(source: str, doc: str | None = None, names=("taut_residual",), flags=(),
+                        sig: str = "RESIDUAL_SIG") -> str:
     """The residual functions ``names`` of ``source`` (taut_residual unless told) rewritten over complex double-double
     numbers (every array complex: the tracker's parameters p(t) are complex;
     :func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source`, constants (v, 0)), compiled by numba with the
-    residual signature of :mod:`cdpr_algebra.homotopy.double_double`; its loads and stores are the interval kernels'
+    residual signature of :mod:`cdpr_algebra.homotopy.double_double` (or ``sig``, with the boolean arguments
+    ``flags`` kept as they are); its loads and stores are the interval kernels'
     (the same array layout: their operations that double-double arithmetic does not define)."""
     from cdpr_algebra.intervals.codegen import pair_arithmetic_source
 
@@ -291,7 +293,7 @@ def _double_double_text(source: str, doc: str | None = None, names=("taut_residu
            "compiled by numba for the extended-precision Newton residual of\n"
            "the compiled tracker (:mod:`cdpr_algebra.homotopy.compiled`).\n")
     moves = [op for op in INTERVAL_OPERATIONS if op not in OPERATIONS]
-    return _numba_module(doc, pair_arithmetic_source(source, flags=(), real=(), constant_second=0.0), "RESIDUAL_SIG",
+    return _numba_module(doc, pair_arithmetic_source(source, flags=flags, real=(), constant_second=0.0), sig,
                          [("cdpr_algebra.homotopy.double_double", OPERATIONS),
                           ("cdpr_algebra.intervals.complex_kernels", moves)], tuple(names))
 

@@ -1,11 +1,11 @@
 """Issue 4, item 4 and issue 15: with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), paths that every
 double-precision retry left failed are tracked again in arbitrary precision before anything is reported: in Study
-parameters, by :func:`cdpr_algebra.homotopy.flint_tracker.hybrid_track` (python-flint wherever double precision
-fails; :mod:`cdpr_algebra.dgp.study_retrack`).
+parameters, by :func:`cdpr_algebra.homotopy.flint_tracker.hybrid_track` (the compiled double-double tracker
+:mod:`cdpr_algebra.homotopy.dd_tracker` wherever double precision fails; :mod:`cdpr_algebra.dgp.study_retrack`).
 
 Forced here: every double-precision attempt (affine, projective, Study) of one path of a 2-cable subproblem of seed
 000 Test 1 reports a failed step at its first step, and so does the hybrid tracker's first double-precision stretch,
-which hands the path to the arbitrary-precision tracker; the subproblem still reports every solution of an ordinary
+which hands the path to the double-double tracker; the subproblem still reports every solution of an ordinary
 run, and no failed path.
 """
 
@@ -15,10 +15,10 @@ import numpy as np
 import pytest
 
 import cdpr_algebra.homotopy.endgame as eg
-import cdpr_algebra.homotopy.flint_tracker as ft
+import cdpr_algebra.homotopy.dd_tracker as dd
 import cdpr_algebra.homotopy.tracker as tk
 from cdpr_algebra.dgp.solve import _generic, default_options, solve_taut_set
-from cdpr_algebra.dgp.study_retrack import STUDY_FLINT
+from cdpr_algebra.dgp.study_retrack import STUDY_EXTENDED
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from cdpr_algebra.homotopy.results import STEP_TOO_SMALL
 from cdpr_algebra.model.robot import load_robot
@@ -58,21 +58,21 @@ def test_failed_path_is_tracked_in_arbitrary_precision(monkeypatch):
     sub1, _ = solve_taut_set(robot, rho, cables, certify=False, exclude=False)
     assert sub1.failed_paths == 1  # forced: without the retry, the path fails
 
-    calls = {"flint": 0, "flint_steps": 0}
-    real_flint = ft.flint_track
+    calls = {"dd": 0, "dd_steps": 0}
+    real_dd = dd.dd_track
 
-    def counting_flint(*a, **k):
-        seg = real_flint(*a, **k)
-        calls["flint"] += 1
-        calls["flint_steps"] += seg.steps
-        return seg
+    def counting_dd(*a, **k):
+        out = real_dd(*a, **k)
+        calls["dd"] += 1
+        calls["dd_steps"] += out[3]
+        return out
 
-    monkeypatch.setattr(ft, "flint_track", counting_flint)
+    monkeypatch.setattr(dd, "dd_track", counting_dd)
     monkeypatch.setattr(tk, "track_segment", _failing_at_the_start(tk.track_segment, lambda x0: np.ones(len(x0), bool)))
     sub, sols = solve_taut_set(robot, rho, cables, certify=False, options=replace(default_options(), retry_mpmath=True),
                                exclude=False)
-    assert calls["flint"] >= 1 and calls["flint_steps"] > 0  # the path went through arbitrary precision
-    assert sub.retried.get(STUDY_FLINT) == 1
+    assert calls["dd"] >= 1 and calls["dd_steps"] > 0  # the path went through double-double
+    assert sub.retried.get(STUDY_EXTENDED) == 1
     assert sub.failed_paths == 0 and sub.finite == sub0.finite and sub.real == sub0.real
     assert len(sols) == len(sols0)
     for a, b in zip(sorted(sols, key=lambda s: tuple(s.position)), sorted(sols0, key=lambda s: tuple(s.position))):

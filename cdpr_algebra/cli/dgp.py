@@ -23,9 +23,9 @@ def add_parser(subparsers) -> None:
                           "large complex solutions, near the singular sets at infinity): far fewer failed paths and "
                           "incomplete subproblems, in about twice the time")
     dgp.add_argument("--mpmath-retry", action="store_true",
-                     help="track up to 4 paths per subproblem that every double-precision retry left failed once "
-                          "more, in arbitrary precision (python-flint) wherever double precision fails (slow: "
-                          "seconds per path, up to about a minute)")
+                     help="track up to 4 paths per subproblem run that every double-precision retry left failed "
+                          "once more, in double-double (compiled, about 30 digits) wherever double precision fails "
+                          "(slow: up to ~10 s a path; the name is historical: no mpmath)")
     dgp.add_argument("--settle", action="store_true",
                      help="run the interval branch and prune on every incomplete subproblem: where it is complete it "
                           "proves the subproblem's admissible equilibria (and adds any the homotopy missed); the exit "
@@ -98,8 +98,8 @@ def run(args) -> int:
             print("  (--extended-precision follows ill-conditioned paths with Newton residuals in double-double: "
                   "most failed paths end there, in about twice the time)", file=sys.stderr)
         if any(s.failed_paths for s in result.incomplete) and not args.mpmath_retry:
-            print("  (--mpmath-retry tracks up to 4 failed paths per subproblem again, in arbitrary precision where "
-                  "double precision fails: seconds to a minute a path)", file=sys.stderr)
+            print("  (--mpmath-retry tracks up to 4 failed paths per subproblem again, in double-double where double "
+                  "precision fails: up to ~10 s a path)", file=sys.stderr)
         if not args.settle:
             print("  (--settle proves their admissible equilibria by interval branch and prune)", file=sys.stderr)
         return INCOMPLETE

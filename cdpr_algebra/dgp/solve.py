@@ -42,9 +42,9 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   complex rotations are ordinary points there; kept only as distinct regular roots of the taut system).  If one or two failed
   paths remain (at most ``RERUN_MAX_FAILED``), the subproblem is re-run once with a random gamma and another seed,
   and the run with fewer failures is kept; with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), the
-  paths that the Study re-track leaves failed are tracked once more in Study parameters, in arbitrary precision
-  (python-flint, 106 bits) wherever double precision fails (:func:`.study_retrack._rescue_in_arbitrary_precision`:
-  at most ``MP_RETRY_PATHS`` = 4 paths per run, seconds each, so off by default).  Every path ends with one outcome (``regular``, ``singular``, ``at_infinity``,
+  paths that the Study re-track leaves failed are tracked once more in Study parameters, in compiled double-double
+  arithmetic wherever double precision fails (:func:`.study_retrack._rescue_in_extended_precision`: at most
+  ``MP_RETRY_PATHS`` = 4 paths per run, up to ~10 s each, so off by default).  Every path ends with one outcome (``regular``, ``singular``, ``at_infinity``,
   ``failed`` with its reason), counted per subproblem (``outcomes``, ``failures``); a subproblem is
   ``complete`` when no path failed and its regular, singular and at-infinity endpoints account for the generic
   count (paths ending on one regular point are failures, ``path_jumping``: a solution is then missing).  A path put
@@ -376,7 +376,7 @@ def _solve_one_cable(robot, rho, i):
     return sub, sols
 
 
-MP_RETRY_PATHS = 4  # with retry_mpmath: failed paths per subproblem tracked in arbitrary precision
+MP_RETRY_PATHS = 4  # with retry_mpmath: failed paths per subproblem run tracked again in double-double (Study)
 RERUN_MAX_FAILED = 2  # re-run a subproblem with a new gamma only when at most this many of its paths failed
 # predictor tolerance of the tracker (engine default 1e-5; the corrector still ends at 1e-8, with a third Newton
 # update where two do not reach it).  Measured on seed 000 Tests 2 and 3 (tenth session): 1e-4 -> 3e-4 takes
@@ -406,9 +406,9 @@ def _track(m, target, seed, gamma, options=None):
 
     p_gen, X_gen = _generic(m)
     # no in-place double retries: suspect paths are re-tracked in projective coordinates, then in Study parameters;
-    # with retry_mpmath, paths still failed there are tracked in Study parameters in arbitrary precision where
-    # double precision fails (dgp.study_retrack, at most MP_RETRY_PATHS per run), not by the engine's mpmath
-    # tracker in (p, u, v, w, lam) (pure Python: minutes per path, and those paths fail in every precision there).
+    # with retry_mpmath, paths still failed there are tracked in Study parameters in double-double where double
+    # precision fails (dgp.study_retrack, at most MP_RETRY_PATHS per run), not by the engine's mpmath tracker in
+    # (p, u, v, w, lam) (pure Python: minutes per path, and it did not rescue these paths).
     # Predictor tolerance PREDICTOR_TOL (default 1e-5): paths from the stored generic set are nonsingular, and any
     # two paths ending on one point are re-tracked with tightened steps (path jumping cannot go unnoticed).
     # The endgame decides finite / at infinity in a projective chart (no norm threshold).

@@ -32,13 +32,16 @@ needs no verdict at infinity) they end on proven roots too.  Test 2: 123 failed 
 
 With ``retry_mpmath`` in the DGP's options (``cdpr dgp --mpmath-retry``), the Study paths still failed (at most
 ``max_mpmath_paths`` a run) are tracked once more from their start points by
-:func:`cdpr_algebra.homotopy.flint_tracker.hybrid_track`: in double precision, and in arbitrary precision (python-flint,
-106 bits, over the same generated evaluator :func:`cdpr_algebra.generated.study_equations.study_equations`) wherever
-double precision fails, to t = 0 without an endgame; an endpoint where Newton's method converges quadratically is
-then kept by the same tests as above (``retried="study_flint"``).  Measured (eighteenth session) on the 16 Study paths
-that Test 3's runs left failed: they crawl near N = 0 (N / |e|^2 ~ 1e-7 .. 1e-5, condition numbers 1e12 .. 1e17)
-where Newton in double precision cannot meet the corrector tolerance; in 106 bits the same step control tracks 11
-of them with ordinary steps (0 .. 3200 of them in arbitrary precision) to regular endpoints (condition 6e2 .. 2e9).
+:func:`cdpr_algebra.homotopy.flint_tracker.hybrid_track`: in double precision, and in compiled double-double
+arithmetic (:mod:`cdpr_algebra.homotopy.dd_tracker` over the generated
+:mod:`cdpr_algebra.generated.study_equations_dd`, the same equations' one source) wherever double precision fails,
+to t = 0 without an endgame; an endpoint where Newton's method converges quadratically is then kept by the same
+tests as above (``retried="study_extended"``).  Measured (eighteenth session) on the 16 Study paths that Test 3's runs
+left failed: they crawl near N = 0 (N / |e|^2 ~ 1e-7 .. 1e-5, condition numbers 1e12 .. 1e17) where Newton in double
+precision cannot meet the corrector tolerance; with 106 bits (python-flint first) the same step control tracks them,
+most with ordinary steps, one only after ~27,000 steps of ~1e-6 in t (7.9 s in double-double, 111 s in
+python-flint).  Test 3 with ``--mpmath-retry --jobs 1``: 5 failed paths -> 1, 3 incomplete subproblems -> 1, 51 s
+instead of ~15 s.
 
 A Study path whose limit lies on the quadric N = 0 (no pose there: R = Q(e) / N, and Q(e) != 0 for e != 0) has its
 pose at infinity: the endgame decides it with ``FastStudySystem.infinity_coordinate`` (N / |e|^2) as it decides
@@ -141,14 +144,20 @@ def fast_study_family(m: int) -> FastStudySystem:
 
 
 def warm_study_kernels() -> None:
-    """Compile (or load from numba's cache) the batched Study evaluator and the double-double residual: ``cdpr warm``
-    calls it, since robots without failed paths never reach them (the single-point kernels compile when
+    """Compile (or load from numba's cache) the batched Study evaluator, the double-double residual and the
+    double-double evaluator and tracker of ``--mpmath-retry``: ``cdpr warm`` calls it, since robots without failed
+    paths never reach them (the single-point kernels compile when
     :mod:`.kernels` is imported)."""
+    from cdpr_algebra.generated.study_equations_dd import study_equations  # compiled on import (explicit signature)
+    from cdpr_algebra.homotopy.dd_tracker import dd_track
+    from cdpr_algebra.homotopy.tracker import TrackerOptions
+
     sys_ = fast_study_family(2)
     sys_.compiled_residual_dd()  # compiled on import (explicit signature)
     x = np.ones(sys_.n, dtype=complex)
     p = np.ones(sys_.m, dtype=complex)
     sys_.evaluate_directional(x, p, p)
+    dd_track(study_equations, sys_.neq, p, p, None, x, 1.0, 0.0, TrackerOptions(), 1, start_newton=0)  # the kernel
 
 
 def study_chart() -> np.ndarray:
@@ -188,38 +197,41 @@ def _limit_of_one_sheet(q, o) -> bool:
     return not bool(zero[0])
 
 
-STUDY_FLINT = "study_flint"  # the ``retried`` of a path that the Study run in arbitrary precision rescued
-FLINT_CHUNK = 200  # steps in arbitrary precision before double precision is tried again (hybrid_track)
-FLINT_STEPS = 3000  # steps in arbitrary precision per path (about 15 s at ~5 ms a step)
+STUDY_EXTENDED = "study_extended"  # the ``retried`` of a path that the Study run in extended precision rescued
+PRECISE_CHUNK = 500  # steps in double-double before double precision is tried again (hybrid_track)
+PRECISE_STEPS = 30000  # steps in double-double per path (~0.3 ms each, m = 4)
 
 
-def _rescue_in_arbitrary_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts, max_paths: int) -> dict:
+def _rescue_in_extended_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts, max_paths: int) -> dict:
     """The Study paths ``spaths`` (from the start points Y1) of the run from P1 to P0 (seed, gamma: the homotopy is
     drawn again, as :func:`cdpr_algebra.homotopy.solve.solve_parameter_homotopy` drew it) that failed, at most
     ``max_paths`` of them, tracked again with :func:`cdpr_algebra.homotopy.flint_tracker.hybrid_track` (double
-    precision, and ``PRECISION`` bits where it fails; at most ``FLINT_STEPS`` such steps per path) to t = te, then on
-    to t = 0 (no endgame: a path that does not reach a regular point there stays failed).  Returns {path: (Study
+    precision, and double-double where it fails: :mod:`cdpr_algebra.homotopy.dd_tracker` over
+    :mod:`cdpr_algebra.generated.study_equations_dd`; at most ``PRECISE_STEPS`` such steps per path) to t = te, then
+    on to t = 0 (no endgame: a path that does not reach a regular point there stays failed).  Returns {path: (Study
     endpoint, steps)} for the paths that reach a point where Newton's method in the Study system converges
     quadratically with a condition number at most the endgame's ``singular_condition``."""
-    from cdpr_algebra.generated.study_equations import study_equations
+    from cdpr_algebra.generated.study_equations_dd import study_equations
+    from cdpr_algebra.homotopy.dd_tracker import DoubleDoubleParameterHomotopy
     from cdpr_algebra.homotopy.endgame import refine
-    from cdpr_algebra.homotopy.flint_tracker import FlintParameterHomotopy, hybrid_track
+    from cdpr_algebra.homotopy.flint_tracker import hybrid_track
     from cdpr_algebra.homotopy.start_systems import parameter_homotopy
 
     bad = [j for j, q in enumerate(spaths) if q.status in FAILURES][:max_paths]
     if not bad:
         return {}
     (hom,) = parameter_homotopy(fast_study_family(m), P1, P0, rng=np.random.default_rng(seed), gamma=gamma)
-    fh = FlintParameterHomotopy.like(hom, study_equations)
+    precise = DoubleDoubleParameterHomotopy.like(hom, study_equations)
     te, tr = opts.endgame.endgame_start, opts.tracker
     out = {}
     for j in bad:
         y, steps, spent, status = Y1[j], 0, 0, SUCCESS
         for ta, tb in ((1.0, te), (te, 0.0)):
-            seg = hybrid_track(hom, fh, y, ta, tb, tr, chunk=FLINT_CHUNK, max_flint_steps=FLINT_STEPS - spent)
+            seg = hybrid_track(hom, precise, y, ta, tb, tr, chunk=PRECISE_CHUNK,
+                               max_precise_steps=PRECISE_STEPS - spent)
             y, status = seg.x, seg.status
-            steps += seg.steps + seg.flint_steps
-            spent += seg.flint_steps
+            steps += seg.steps
+            spent += seg.precise_steps
             if status != SUCCESS:
                 break
         if status != SUCCESS:
@@ -256,7 +268,7 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     ends = {j: spaths[j].endpoint for j in ok}
     flint = {}
     if options is not None and options.retry_mpmath:  # the paths still failed, in arbitrary precision
-        flint = _rescue_in_arbitrary_precision(m, spaths, Y1, P1, P0, seed, gamma, opts,
+        flint = _rescue_in_extended_precision(m, spaths, Y1, P1, P0, seed, gamma, opts,
                                                options.max_mpmath_paths)
         ends.update({j: y for j, (y, _) in flint.items()})
         ok = sorted(ends)
@@ -275,7 +287,7 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
         if coincides_with_any(regular, x, opts.endgame.cluster_tol):  # the detour retry's test of a new point
             continue
         i = failed[j]
-        extra, how = (flint[j][1], STUDY_FLINT) if j in flint else (0, "study")
+        extra, how = (flint[j][1], STUDY_EXTENDED) if j in flint else (0, "study")
         paths[i] = replace(paths[i], status=SUCCESS, endpoint=x, t=0j, residual=float(residual[k]),
                            condition=float(cond[k]), accuracy=float(upd[k]),
                            steps=paths[i].steps + spaths[j].steps + extra, winding_number=1, retried=how)

@@ -23,7 +23,7 @@ from __future__ import annotations
 import numba as nb
 from numba import types as nbt
 
-__all__ = ["OPERATIONS", "RESIDUAL_SIG", "to_dd", "to_complex", "dd_parameters"]
+__all__ = ["OPERATIONS", "RESIDUAL_SIG", "EQUATIONS_SIG", "to_dd", "to_complex", "dd_parameters"]
 
 _J = dict(cache=True, error_model="numpy")
 _SPLIT = 134217729.0  # 2^27 + 1
@@ -189,6 +189,9 @@ OPERATIONS = ["cc_add", "cc_sub", "cc_mul", "c_neg", "cr_add", "rc_add", "cr_sub
 _D2 = nbt.float64[:, ::1]
 # (x, p, F) of a rewritten generated residual: x the unknowns, p the parameters, F out (double-double arrays)
 RESIDUAL_SIG = nbt.void(_D2, _D2, _D2)
+# (x, p, dp, F, J, Ht, with_ht) of a rewritten generated evaluator: F, the pattern of J = dF/dx, and with ``with_ht``
+# Ht = dF/dp . dp (the tracker of :mod:`.dd_tracker`)
+EQUATIONS_SIG = nbt.void(_D2, _D2, _D2, _D2, nbt.float64[:, :, ::1], _D2, nbt.boolean)
 
 
 @nb.njit(cache=True, error_model="numpy")

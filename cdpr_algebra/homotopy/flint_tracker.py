@@ -92,6 +92,10 @@ class FlintParameterHomotopy:
         dp = [_mid((g * a - b) / s - v * (g - 1) / (s * s)) for a, b, v in zip(p1, p0, num)]
         return p, dp
 
+    def track(self, x0, t_a, t_b, options, max_steps: int, initial_step: float | None = None) -> "FlintSegment":
+        """:func:`flint_track` of this homotopy at ``PRECISION`` bits (the interface of :func:`hybrid_track`)."""
+        return flint_track(self, x0, t_a, t_b, options, PRECISION, max_steps, initial_step)
+
     def evaluate_all(self, x, t, with_ht: bool = True):
         """(F, J, Ht) at the point x (list of acb) and t (acb): object arrays of acb."""
         p, dp = self.parameters_at(t)
@@ -125,7 +129,8 @@ def _norm(v) -> float:
 
 @dataclass(frozen=True)
 class FlintSegment:
-    """One path tracked by :func:`flint_track`: the last point reached (complex), its t, status and steps."""
+    """One path tracked by :func:`flint_track` (or :func:`.dd_tracker.dd_track`): the last point reached (complex), its
+    t, status and steps."""
 
     x: np.ndarray
     t: complex
@@ -212,41 +217,44 @@ def flint_track(h: FlintParameterHomotopy, x0, t_a, t_b, options, prec: int = PR
 
 @dataclass(frozen=True)
 class HybridSegment:
-    """One path tracked by :func:`hybrid_track`: as :class:`FlintSegment`, with the steps in each precision."""
+    """One path tracked by :func:`hybrid_track`: as :class:`FlintSegment`, with the steps taken in extended precision
+    (``precise_steps``) among all ``steps``."""
 
     x: np.ndarray
     t: complex
     status: str
     steps: int
-    flint_steps: int
+    precise_steps: int
 
 
-def hybrid_track(homotopy, fh: FlintParameterHomotopy, x0, t_a, t_b, options, prec: int = PRECISION,
-                 chunk: int = 200, max_flint_steps: int = 3000) -> HybridSegment:
+def hybrid_track(homotopy, precise, x0, t_a, t_b, options, chunk: int = 200,
+                 max_precise_steps: int = 3000) -> HybridSegment:
     """Track x0 from t_a to t_b in double precision (:func:`.tracker.track_segment` on ``homotopy``, ``options``);
-    where that fails, on from the last point it reached in ``prec`` bits (:func:`flint_track` on ``fh``, the same
-    homotopy) for at most ``chunk`` steps, then in double precision again, and so on, until t_b is reached, a
-    tracker fails otherwise than by its step budget, or ``max_flint_steps`` steps in arbitrary precision are spent
-    (then ``too_many_steps``)."""
+    where that fails, on from the last point it reached in extended precision (``precise.track``: a
+    :class:`FlintParameterHomotopy`, or the compiled double-double twin
+    :class:`.dd_tracker.DoubleDoubleParameterHomotopy`, of the same homotopy) for at most ``chunk`` steps, then in
+    double precision again, and so on, until t_b is reached, a tracker fails otherwise than by its step budget, or
+    ``max_precise_steps`` steps in extended precision are spent (then ``too_many_steps``)."""
     from .tracker import track_segment
 
     x, ta = np.asarray(x0, dtype=complex), complex(t_a)
-    steps = fsteps = 0
+    steps = psteps = 0
     while True:
         seg = track_segment(homotopy, x[None], ta, t_b, options)
         steps += int(seg.steps[0])
         if seg.status[0] == SUCCESS:
-            return HybridSegment(seg.x[0], complex(t_b), SUCCESS, steps, fsteps)
+            return HybridSegment(seg.x[0], complex(t_b), SUCCESS, steps, psteps)
         if seg.status[0] not in (STEP_TOO_SMALL, TOO_MANY_STEPS) or not np.all(np.isfinite(seg.x[0])):
-            return HybridSegment(seg.x[0], complex(seg.t[0]), str(seg.status[0]), steps, fsteps)
+            return HybridSegment(seg.x[0], complex(seg.t[0]), str(seg.status[0]), steps, psteps)
         x, ta = seg.x[0], complex(seg.t[0])
-        budget = min(chunk, max_flint_steps - fsteps)
+        budget = min(chunk, max_precise_steps - psteps)
         if budget <= 0:
-            return HybridSegment(x, ta, TOO_MANY_STEPS, steps, fsteps)
-        fl = flint_track(fh, x, ta, t_b, options, prec, budget, initial_step=min(options.initial_step, 1e-4))
-        fsteps += fl.steps
-        if fl.status == SUCCESS:
-            return HybridSegment(fl.x, complex(t_b), SUCCESS, steps, fsteps)
-        if fl.status != TOO_MANY_STEPS:
-            return HybridSegment(fl.x, fl.t, fl.status, steps, fsteps)
-        x, ta = fl.x, fl.t
+            return HybridSegment(x, ta, TOO_MANY_STEPS, steps, psteps)
+        pr = precise.track(x, ta, t_b, options, budget, initial_step=min(options.initial_step, 1e-4))
+        psteps += pr.steps
+        steps += pr.steps
+        if pr.status == SUCCESS:
+            return HybridSegment(pr.x, complex(t_b), SUCCESS, steps, psteps)
+        if pr.status != TOO_MANY_STEPS:
+            return HybridSegment(pr.x, pr.t, pr.status, steps, psteps)
+        x, ta = pr.x, pr.t
