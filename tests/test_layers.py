@@ -167,38 +167,34 @@ def test_the_checks_see_a_violation(tmp_path):
     assert _cycles({"a": {"b"}, "b": {"c"}}) == []
 
 
-def test_numeric_dgp_path_runs_without_sympy():
-    """Issue 19 item 5: the numeric path (CLI dgp of a shipped robot: tracking, endgame, certificates) imports
-    no sympy (symbolic work is for derivations and user expressions); checked in a fresh interpreter."""
+def _modules_after_cli(argv: list, expect: str, select: str, timeout: int) -> str:
+    """In a fresh interpreter: ``main(argv)`` of the CLI (stdout captured, containing ``expect``, exit status 0), then
+    the sorted names of the loaded modules m for which the expression ``select`` holds; returns that list's text."""
     import subprocess
     import sys
 
-    robot = PACKAGE.parent / "examples" / "seed000_test1.toml"
     code = ("import sys, io, contextlib\nfrom cdpr_algebra.cli.main import main\n"
-            f"sys.argv = ['cdpr', 'dgp', {str(robot)!r}, '--json']\n"
             "out = io.StringIO()\n"
             "with contextlib.redirect_stdout(out):\n"
-            "    try:\n        main()\n    except SystemExit as e:\n        assert not e.code, e.code\n"
-            "assert '\"complete\": true' in out.getvalue()\n"
-            "print(sorted(m for m in sys.modules if m == 'sympy' or m.startswith('sympy.')))\n")
-    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
+            f"    try:\n        main({argv!r})\n    except SystemExit as e:\n        assert not e.code, e.code\n"
+            f"assert {expect!r} in out.getvalue()\n"
+            f"print(sorted(m for m in sys.modules if {select}))\n")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=timeout)
     assert run.returncode == 0, run.stderr[-2000:]
-    assert run.stdout.strip().splitlines()[-1] == "[]"
+    return run.stdout.strip().splitlines()[-1]
+
+
+def test_numeric_dgp_path_runs_without_sympy():
+    """Issue 19 item 5: the numeric path (CLI dgp of a shipped robot: tracking, endgame, certificates) imports
+    no sympy (symbolic work is for derivations and user expressions); checked in a fresh interpreter."""
+    robot = PACKAGE.parent / "examples" / "seed000_test1.toml"
+    assert _modules_after_cli(["dgp", str(robot), "--json"], '"complete": true',
+                              "m == 'sympy' or m.startswith('sympy.')", 600) == "[]"
 
 
 def test_help_imports_neither_numpy_nor_the_library():
     """Issue 19 item 5 (``cdpr --help`` <= 0.2 s): building the parser of every command imports no numpy (about
     60-80 ms of the 0.16 s it took) and none of the numeric layers; checked in a fresh interpreter."""
-    import subprocess
-    import sys
-
-    code = ("import sys, io, contextlib\nfrom cdpr_algebra.cli.main import main\n"
-            "out = io.StringIO()\n"
-            "with contextlib.redirect_stdout(out):\n"
-            "    try:\n        main(['--help'])\n    except SystemExit as e:\n        assert not e.code, e.code\n"
-            "assert 'dgp' in out.getvalue()\n"
-            "print(sorted(m for m in sys.modules if m.split('.')[0] in ('numpy', 'sympy', 'numba', 'scipy')\n"
-            "             or (m.startswith('cdpr_algebra.') and m.split('.')[1] not in ('cli', 'model'))))\n")
-    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
-    assert run.returncode == 0, run.stderr[-2000:]
-    assert run.stdout.strip().splitlines()[-1] == "[]"
+    select = ("m.split('.')[0] in ('numpy', 'sympy', 'numba', 'scipy') "
+              "or (m.startswith('cdpr_algebra.') and m.split('.')[1] not in ('cli', 'model'))")
+    assert _modules_after_cli(["--help"], "dgp", select, 120) == "[]"
