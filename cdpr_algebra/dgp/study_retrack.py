@@ -40,8 +40,9 @@ tests as above (``retried="study_extended"``).  Measured (eighteenth session) on
 left failed: they crawl near N = 0 (N / |e|^2 ~ 1e-7 .. 1e-5, condition numbers 1e12 .. 1e17) where Newton in double
 precision cannot meet the corrector tolerance; with 106 bits (python-flint first) the same step control tracks them,
 most with ordinary steps, one only after ~27,000 steps of ~1e-6 in t (7.9 s in double-double, 111 s in
-python-flint).  Test 3 with ``--mpmath-retry --jobs 1``: 5 failed paths -> 1, 3 incomplete subproblems -> 1, 51 s
-instead of ~15 s.
+python-flint).  Test 3 with ``--mpmath-retry --jobs 1``: 5 failed paths -> 1, 3 incomplete subproblems -> 1, 55 s
+instead of 16 s; Test 2 4 -> 3 failed paths; seed 002's 8-cable robot 138 -> 132 (most of its failed Study paths end
+near N = 0, where a track without an endgame cannot end).
 
 A Study path whose limit lies on the quadric N = 0 (no pose there: R = Q(e) / N, and Q(e) != 0 for e != 0) has its
 pose at infinity: the endgame decides it with ``FastStudySystem.infinity_coordinate`` (N / |e|^2) as it decides
