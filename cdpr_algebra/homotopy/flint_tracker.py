@@ -16,7 +16,9 @@ radii are not needed: nothing here is a proof; a rescued endpoint is refined and
 :func:`flint_track` is the double tracker's scheme (RK4 predictor, Newton corrector, predictor tolerance, step
 growth and shrinking: :mod:`.tracker`), with linear systems solved by ``acb_mat.solve(algorithm="approx")``.
 :func:`hybrid_track` tracks in double precision (:func:`.tracker.track_segment`) and hands only the stretches where
-it fails to :func:`flint_track`, ``chunk`` steps at a time, then tries double precision again.
+it fails to an extended-precision twin of the homotopy (this module's, or the compiled double-double one of
+:mod:`.dd_tracker`, ~15x faster, which the DGP uses), in chunks of steps that double each round, then tries double
+precision again.
 
 Cost (measured, eighteenth session, m = 4, 12 unknowns, 106 bits): one evaluation ~0.45 ms, one step ~4 ms (RK4
 and three Newton updates: 7 evaluations, 7 solves), against ~10 us in the compiled double tracker.  On the 16 Study
