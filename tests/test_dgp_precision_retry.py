@@ -9,6 +9,7 @@ which hands the path to the double-double tracker; the subproblem still reports 
 run, and no failed path.
 """
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -22,7 +23,6 @@ from cdpr_algebra.dgp.study_retrack import STUDY_EXTENDED
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from cdpr_algebra.homotopy.results import STEP_TOO_SMALL
 from cdpr_algebra.model.robot import load_robot
-from dataclasses import replace
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -258,9 +258,8 @@ def run(args) -> int:
 
 
 def _run(args) -> int:
-    from cdpr_algebra.report.jsonable import jsonable  # here, not with the module: it imports numpy
-
     from cdpr_algebra.model.robot import load_robot
+    from cdpr_algebra.report.jsonable import jsonable  # here, not with the module: it imports numpy
 
     t0 = time.perf_counter()
     robot = load_robot(args.robot)

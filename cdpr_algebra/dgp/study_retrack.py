@@ -267,11 +267,10 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     spaths = sres.track.paths
     ok = [j for j, q in enumerate(spaths) if q.status == SUCCESS or _limit_of_one_sheet(q, opts.endgame)]
     ends = {j: spaths[j].endpoint for j in ok}
-    flint = {}
-    if options is not None and options.retry_mpmath:  # the paths still failed, in arbitrary precision
-        flint = _rescue_in_extended_precision(m, spaths, Y1, P1, P0, seed, gamma, opts,
-                                               options.max_mpmath_paths)
-        ends.update({j: y for j, (y, _) in flint.items()})
+    precise = {}
+    if options is not None and options.retry_mpmath:  # the paths still failed, in double-double where double fails
+        precise = _rescue_in_extended_precision(m, spaths, Y1, P1, P0, seed, gamma, opts, options.max_mpmath_paths)
+        ends.update({j: y for j, (y, _) in precise.items()})
         ok = sorted(ends)
     with np.errstate(all="ignore"):
         X0 = from_study(np.array([ends[j] for j in ok]).reshape(-1, 8 + m), m)
@@ -288,7 +287,7 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
         if coincides_with_any(regular, x, opts.endgame.cluster_tol):  # the detour retry's test of a new point
             continue
         i = failed[j]
-        extra, how = (flint[j][1], STUDY_EXTENDED) if j in flint else (0, "study")
+        extra, how = (precise[j][1], STUDY_EXTENDED) if j in precise else (0, "study")
         paths[i] = replace(paths[i], status=SUCCESS, endpoint=x, t=0j, residual=float(residual[k]),
                            condition=float(cond[k]), accuracy=float(upd[k]),
                            steps=paths[i].steps + spaths[j].steps + extra, winding_number=1, retried=how)
