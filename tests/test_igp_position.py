@@ -27,7 +27,6 @@ import sympy as sp
 from cdpr_algebra.generated import dialytic as gd
 from cdpr_algebra.generated import quartics as gq
 from cdpr_algebra.igp.position import (
-    E3,
     dialytic_determinant,
     dialytic_matrices_exact,
     igp_position,
@@ -36,6 +35,8 @@ from cdpr_algebra.igp.position import (
 from cdpr_algebra.model.pose import matrix_from_euler_parameters, rot_x, rot_y, rot_z
 from cdpr_algebra.model.robot import Robot
 from cdpr_algebra.model.stability import hessian_class, reduced_hessian
+
+E3 = sp.Symbol("e3")  # the variable of dialytic_determinant
 
 # ------------------------------------------------------------------------------------------ data
 T3 = dict(a2=[9, 10, 0], a3=[6, 8, 7], b=[[-7, 3, 2], [-5, 1, -1], [-5, -2, 0]], x=[7, 9, 1])

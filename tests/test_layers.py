@@ -192,6 +192,14 @@ def test_numeric_dgp_path_runs_without_sympy():
                               "m == 'sympy' or m.startswith('sympy.')", 600) == "[]"
 
 
+def test_numeric_igp_path_runs_without_sympy():
+    """The IGP with assigned position (CLI, Table 3 of seed 004, certificates included) imports no sympy either:
+    sympy is for the exact determinant and exact input only (it cost ~0.3 s of a ~1.2 s run)."""
+    robot = PACKAGE.parent / "examples" / "seed004_table3.toml"
+    assert _modules_after_cli(["igp", str(robot), "--position", "7", "9", "1", "--json"], '"certified": true',
+                              "m == 'sympy' or m.startswith('sympy.')", 300) == "[]"
+
+
 def test_help_imports_neither_numpy_nor_the_library():
     """Issue 19 item 5 (``cdpr --help`` <= 0.2 s): building the parser of every command imports no numpy (about
     60-80 ms of the 0.16 s it took) and none of the numeric layers; checked in a fresh interpreter."""

@@ -49,6 +49,7 @@ e0 = 1 (else e3 = 1, e2 = 1, e1 = 1).
 
 from __future__ import annotations
 
+import sys
 import time
 from fractions import Fraction
 from functools import reduce
@@ -56,7 +57,6 @@ from math import lcm
 
 import numpy as np
 import scipy.linalg
-import sympy as sp
 
 from cdpr_algebra.model.errors import CdprInputError
 from cdpr_algebra.generated import dialytic as _gd
@@ -66,8 +66,6 @@ from cdpr_algebra.certificates.equilibria import with_certificates
 from .quartic_forms import quartic_matrix
 from .results import IGPResult, make_solutions
 from cdpr_algebra.model.robot import Robot
-
-E3 = sp.Symbol("e3")
 
 _MONO = np.array(_gq.QUARTIC_MONOMIALS)  # (35, 4) exponents of (e0, e1, e2, e3)
 _NQ = len(_gq.QUARTIC_NAMES)
@@ -83,7 +81,8 @@ def _rational(v) -> Fraction:
         return v
     if isinstance(v, (int, np.integer)):
         return Fraction(int(v))
-    if isinstance(v, sp.Basic):
+    if "sympy" in sys.modules and isinstance(v, sys.modules["sympy"].Basic):  # no sympy object without sympy
+        sp = sys.modules["sympy"]
         r = sp.nsimplify(v) if not v.is_Rational else v
         if not r.is_Rational:
             raise CdprInputError("data", f"exact mode needs rational numbers, got {v!r}")
@@ -853,6 +852,7 @@ def dialytic_determinant(robot_or_data, com_position, form: str = "20") -> sp.Po
     ``load_direction`` (a rational unit vector, default +k). Computed in the work frame (origin A_1, load
     along +k) by exact evaluation at integer points and interpolation.
     """
+    import sympy as sp
     A = dialytic_matrices_exact(robot_or_data, com_position, form)
     n = len(A[0])
     # clear denominators row by row (a constant factor, divided out at the end)
@@ -874,9 +874,8 @@ def dialytic_determinant(robot_or_data, com_position, form: str = "20") -> sp.Po
     coeffs = [Fraction(c) / total for c in coeffs]
     while coeffs and coeffs[-1] == 0:
         coeffs.pop()
-    if not coeffs:
-        return sp.Poly(0, E3, domain=sp.QQ)
-    return sp.Poly([sp.Rational(c.numerator, c.denominator) for c in reversed(coeffs)], E3, domain=sp.QQ)
+    e3 = sp.Symbol("e3")
+    return sp.Poly([sp.Rational(c.numerator, c.denominator) for c in reversed(coeffs)] or 0, e3, domain=sp.QQ)
 
 
 def _newton_interpolation(xs, ys):
