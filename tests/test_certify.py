@@ -15,8 +15,8 @@ import pytest
 from flint import arb
 
 from cdpr_algebra import load_robot
-from cdpr_algebra.certificates.equilibria import (BOX_RTOL, certify_dgp_solutions, certify_igp_orientation, certify_taut_root,
-                                  taut_system)
+from cdpr_algebra.certificates.equilibria import (BOX_RTOL, certify_dgp_solutions, certify_igp_orientation,
+                                                  certify_igp_positions, certify_taut_root, taut_system)
 from cdpr_algebra.dgp.solve import dgp, solve_taut_set
 from cdpr_algebra.model.taut_equations import taut_family
 from cdpr_algebra.dgp.one_cable import one_cable_equilibria
@@ -347,6 +347,59 @@ def test_igp_position_table3_all_certified(table3):
         assert c.hessian == "proven" and c.hessian_class == s.hessian
     assert "certified" in igp_table(res).splitlines()[0]
     assert igp_table(res).splitlines()[-1].count("24 certified") == 1
+
+
+def _mp_igp_root(robot, G, s, dps=40):
+    """The IGP root near the float solution ``s`` refined by Newton's method in mpmath at ``dps`` digits on the
+    12 x 12 system (rotation entries, lam) with the platform frame at G, an independent reference point."""
+    import mpmath as mp
+
+    with mp.workdps(dps):
+        g = [mp.mpf(float(v)) for v in robot.com]
+        A = [[mp.mpf(float(v)) for v in a] for a in robot.base]
+        b = [[mp.mpf(float(v)) - g[k] for k, v in enumerate(bi)] for bi in robot.platform]
+        f = [mp.mpf(robot.load) * mp.mpf(float(c)) for c in robot.load_direction]
+        Gm = [mp.mpf(float(v)) for v in G]
+        y = [mp.mpf(v) for v in np.asarray(s.rotation, float).T.ravel().tolist()]
+        y += [mp.mpf(float(t)) / mp.mpf(float(r)) for t, r in zip(s.tensions, s.lengths)]
+        for _ in range(8):
+            F, J = taut_system(Gm + y, A, b, [mp.mpf(0)] * 3, f)
+            d = mp.lu_solve(mp.matrix([row[3:] for row in J]), mp.matrix(F))
+            y = [yk - dk for yk, dk in zip(y, d)]
+        assert max(abs(v) for v in taut_system(Gm + y, A, b, [mp.mpf(0)] * 3, f, jacobian=False)[0]) < mp.mpf(10) ** -30
+        rho = [mp.sqrt(sum((Gm[k] + sum(y[3 * j + k] * b[i][j] for j in range(3)) - A[i][k]) ** 2 for k in range(3)))
+               for i in range(robot.n)]
+        return (np.array([[float(y[3 * j + k]) for j in range(3)] for k in range(3)]),
+                np.array([float(y[9 + i] * rho[i]) for i in range(robot.n)]))
+
+
+def test_igp_position_enclosures_hold_the_mpmath_root(table3):
+    """The compiled Krawczyk boxes (rows and columns of the generated interval evaluator) and the enclosures of
+    rotation and tensions hold the root refined to 40 digits in mpmath, for all 24 roots of Table 3."""
+    robot, res = table3
+    for s in res.real_solutions:
+        R, tau = _mp_igp_root(robot, [7.0, 9.0, 1.0], s)
+        c = s.certificate
+        assert c.certified, c.reason
+        # the 40-digit values rounded to doubles: one rounding (|v| 2^-53) from the enclosed value
+        assert _contains(c.rotation_lower, c.rotation_upper, R, 2.0 ** -52)
+        assert _contains(c.tension_lower, c.tension_upper, tau, 2.0 ** -52 * np.max(np.abs(tau)))
+        assert 0 < c.box_width <= BOX_RTOL * robot.cable_scale and c.iterations >= 1
+
+
+def test_igp_position_certificates_of_bad_roots(table3):
+    """certify_igp_positions on a batch with a good root, a root moved by 1e-6 and a root with a NaN: only the
+    first is certified, the others say why, in their places."""
+    robot, res = table3
+    s = res.real_solutions[0]
+    R = np.asarray(s.rotation, float)
+    moved = R @ np.array([[1.0, -1e-6, 0], [1e-6, 1.0, 0], [0, 0, 1.0]])
+    roots = [(R, s.tensions, s.lengths), (moved, s.tensions, s.lengths), (R * np.nan, s.tensions, s.lengths)]
+    good, off, bad = certify_igp_positions(robot, [7.0, 9.0, 1.0], roots)
+    assert good.certified and good.hessian == "proven"
+    assert not off.certified and not off.exists_unique and "Newton step" in off.reason and off.newton_step > 1e-9
+    assert not bad.certified and "not finite" in bad.reason
+    assert all(t == "unknown" for t in off.tension_signs + bad.tension_signs)
 
 
 def test_igp_position_table4_boundary():

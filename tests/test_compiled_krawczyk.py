@@ -115,3 +115,37 @@ def test_compiled_krawczyk_proves_what_the_interval_objects_prove(example, cable
         assert np.all((a.lo[k] <= mid) & (mid <= a.hi[k]))
     ratio = (fast.hi[k] - fast.lo[k]) / (slow.hi[k] - slow.lo[k])
     assert 0.9 <= np.median(ratio) <= 1.1
+
+
+def _sqrt2_kernel(ok_value=True):
+    """The Krawczyk operator of x^2 - 2 (one unknown) over the boxes y -+ r in the Python interval objects, C the
+    inverse of 2 y: a kernel for certify_real_roots."""
+    from cdpr_algebra.intervals.arithmetic import Interval
+
+    def kernel(part, y, r):
+        X = Interval(y - r, y + r)
+        C = 1.0 / (2.0 * y)
+        Fy = Interval.point(y).sqr() - 2.0
+        K = (Interval.point(y) - Fy * C) + (1.0 - (2.0 * X) * C) * (X - Interval.point(y))
+        return K, np.full(len(y), ok_value)
+
+    return kernel
+
+
+def test_certify_real_roots_encloses_sqrt2_and_counts_its_failures():
+    """The epsilon-inflation driver of the compiled real Krawczyk rounds: the box proven around sqrt(2) (double
+    nearest, and a point 1e-13 off) holds the exact root (arb), within the width limit; a root whose operator cannot
+    be formed, or a non-finite one, is not proven and says why."""
+    from flint import arb
+
+    from cdpr_algebra.intervals.real_krawczyk import certify_real_roots
+
+    Y = np.array([[np.sqrt(2.0)], [np.sqrt(2.0) + 1e-13], [np.nan]])
+    boxes = certify_real_roots(_sqrt2_kernel(), Y, 1.0, max_rel_width=1e-9)
+    assert boxes.proven.tolist() == [True, True, False] and "not finite" in boxes.reason[2]
+    root = arb(2).sqrt()
+    for k in (0, 1):
+        assert arb(boxes.lo[k, 0]) < root < arb(boxes.hi[k, 0]) and boxes.rounds[k] >= 1
+        assert boxes.hi[k, 0] - boxes.lo[k, 0] <= 1e-9
+    bad = certify_real_roots(_sqrt2_kernel(False), Y[:1], 1.0, max_rel_width=1e-9)
+    assert not bad.proven[0] and bad.rounds[0] == 0 and "not proven" in bad.reason[0]

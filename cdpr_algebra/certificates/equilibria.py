@@ -29,7 +29,10 @@ or attachment points far from the platform frame's origin, multiply the rotation
 distances: a platform 1e4 sizes from its frame's origin, tests/large_forces.py, was not certified at any box width),
 tried at 53 bits and then at 128 bits with Newton steps in ball arithmetic; a root that
 doubles cannot locate within the box (condition numbers of 1e9 and more) is polished first
-(:func:`polished_taut_root`) and the DGP reports the polished root.  Over the certified box, in outward-rounded ball arithmetic (python-flint arb):
+(:func:`polished_taut_root`) and the DGP reports the polished root.  The roots of the IGP with assigned position are
+certified together by compiled Krawczyk rounds (:func:`certify_igp_positions`: the rows and columns of the
+system above taken from the generated interval evaluator of the taut system, in outward-rounded double-precision
+interval arithmetic, :func:`cdpr_algebra.intervals.real_krawczyk.certify_real_roots`).  Over the certified box, in outward-rounded ball arithmetic (python-flint arb):
 
 * tensions tau_i = lam_i rho_i (IGP: rho_i = |B_i - A_i| enclosed too); sign 'positive', 'negative', or
   'boundary' when the enclosure contains 0 (a tension zero within rounding is never reported as positive);
@@ -57,7 +60,7 @@ from flint import arb, arb_mat
 
 from cdpr_algebra.generated.taut_equations import taut_equations, taut_residual
 from cdpr_algebra.model.taut_equations import decode, encode, from_cable_frame, to_cable_frame
-from cdpr_algebra.intervals.balls import bounds, krawczyk_certify, sign, symmetric_inertias
+from cdpr_algebra.intervals.balls import KrawczykResult, bounds, krawczyk_certify, sign, symmetric_inertias
 from cdpr_algebra.report.jsonable import jsonable
 
 BOX_RTOL = 1e-9  # max width of the certified box relative to the scale of each unknown
@@ -726,8 +729,12 @@ def certify_igp_position(robot, com_position, rotation, tensions, lengths, box_r
 
 def certify_igp_positions(robot, com_position, roots, box_rtol: float = BOX_RTOL) -> list:
     """:func:`certify_igp_position` for many roots at one position of G: ``roots`` = (rotation, tensions,
-    lengths) each.  The robot's balls are made once and the floating-point F and J (for C and the Newton step)
-    evaluated for every root at once."""
+    lengths) each.  The floating-point F and J (the Newton step) are evaluated for every root at once, and the
+    Krawczyk rounds of all roots are compiled (:func:`cdpr_algebra.intervals.real_krawczyk.certify_real_roots` with
+    :func:`_compiled_subsystem_krawczyk`: rows and columns of the generated interval evaluator of the taut system,
+    p = G fixed); the consequences are proven in ball arithmetic."""
+    from cdpr_algebra.intervals.real_krawczyk import certify_real_roots
+
     m = robot.n
     L = robot.cable_scale
     n = 12 + m
@@ -737,41 +744,89 @@ def certify_igp_positions(robot, com_position, roots, box_rtol: float = BOX_RTOL
     roots = list(roots)
     if not roots:
         return []
+    N = len(roots)
     Y = np.array([np.concatenate([np.asarray(R, float).T.ravel(), np.asarray(t, float) / np.asarray(rho, float)])
-                  for R, t, rho in roots]).reshape(len(roots), n - 3)
+                  for R, t, rho in roots]).reshape(N, n - 3)
     F0, J0 = _float_systems(Gf, Y, _parameters(*_robot_data(robot, range(m), float, com_at_origin=True)), rows, cols)
     C = _inverses(J0)
-    # balls
+    S = np.array([_scales(robot, m, cols, L, Y[j]) for j in range(N)]).reshape(N, n - 3)
+    with np.errstate(invalid="ignore", over="ignore"):
+        step = np.einsum("nij,nj->ni", C, F0)
+        rel_step = np.max(np.abs(step) / S, axis=1)
+    y = Y - step
+    todo = np.flatnonzero(np.isfinite(Y).all(axis=1) & np.isfinite(C).all(axis=(1, 2))
+                          & (rel_step <= 0.5 * box_rtol))
+    kernel = _compiled_subsystem_krawczyk(robot, Gf, rows, cols)
+    boxes = certify_real_roots(kernel, y[todo], S[todo], box_rtol)
     G = [arb(v) for v in Gf]
-    pb = _parameters(*_robot_data(robot, range(m), arb, com_at_origin=True))
-    sel = np.ix_(rows, cols)
-
-    def F(y):
-        return _evaluate(G + y, pb, n, False)[0][rows].tolist()
-
-    def J(x):
-        _, Ja = _evaluate(G + x, pb, n)
-        return arb_mat(Ja[sel].tolist())
-
     balls = _robot_balls(robot)
     gp = balls[2]
     out, parts, proven = [], [], []
-    for j in range(len(roots)):
-        scale = _scales(robot, m, cols, L, Y[j])
-        kr = krawczyk_certify(F, J, Y[j], scale, box_rtol, inverse=C[j], residual=F0[j])
-        if not kr.proven:
-            out.append(_failed("igp_position", robot.n, kr.reason, kr, list(range(m))))
+    at = {j: k for k, j in enumerate(todo.tolist())}
+    for j in range(N):
+        k = at.get(j)
+        if k is None or not boxes.proven[k]:
+            if not np.all(np.isfinite(Y[j])):
+                reason = "the root is not finite"
+            elif not np.all(np.isfinite(C[j])):
+                reason = "the Jacobian is singular at the root"
+            elif k is None:
+                reason = (f"the Newton step from the root is {rel_step[j]:.1e} (relative to the unknowns' scale), "
+                          f"more than the box tolerance {box_rtol:.0e}: no solution proven that close to the root")
+            else:
+                reason = boxes.reason[k]
+            kr = KrawczykResult(False, None, None, y[j], 0 if k is None else int(boxes.rounds[k]),
+                                float(rel_step[j]), reason)
+            out.append(_failed("igp_position", robot.n, reason, kr, list(range(m))))
             continue
-        X = kr.enclosure
-        R = [[X[k], X[3 + k], X[6 + k]] for k in range(3)]
-        p = [G[k] - (R[k][0] * gp[0] + R[k][1] * gp[1] + R[k][2] * gp[2]) for k in range(3)]
+        X = [arb(lo_).union(arb(hi_)) for lo_, hi_ in zip(boxes.lo[k].tolist(), boxes.hi[k].tolist())]
+        kr = KrawczykResult(True, X, None, y[j], int(boxes.rounds[k]), float(rel_step[j]))
+        R = [[X[i], X[3 + i], X[6 + i]] for i in range(3)]
+        p = [G[i] - (R[i][0] * gp[0] + R[i][1] * gp[1] + R[i][2] * gp[2]) for i in range(3)]
         proven.append(len(out))
         out.append(None)
         parts.append(_enclosures("igp_position", robot, list(range(m)), None, p, R, X[9:], kr,
-                                 kr.relative_width(scale), L, balls=balls))
+                                 kr.relative_width(S[j]), L, balls=balls))
     for j, c in zip(proven, _finish(parts)):
         out[j] = c
     return out
+
+
+def _compiled_subsystem_krawczyk(robot, G, rows, cols):
+    """The Krawczyk operator of the IGP with assigned position over real boxes of (u, v, w, lam), compiled
+    (:func:`cdpr_algebra.intervals.complex_kernels.real_subsystem_krawczyk_kernel`): rows ``rows`` and columns
+    ``cols`` of the generated interval evaluator :mod:`cdpr_algebra.generated.taut_equations_intervals` of the
+    taut system with all m = n cables, the platform frame moved to G (b_i' - g' enclosed, g' = 0), p = G exact,
+    Q d enclosed (the length rows, not used, get rho_i^2 = 0).  Returns kernel(part, y, r) -> (K, ok), the same
+    operator for every root (``part`` unused)."""
+    from cdpr_algebra.generated.taut_equations_intervals import taut_equations as ev_iv, taut_residual as res_iv
+    from cdpr_algebra.homotopy.compiled import function_address
+    from cdpr_algebra.intervals.arithmetic import Interval
+    from cdpr_algebra.intervals.complex_kernels import EVALUATOR_TYPE, real_subsystem_krawczyk_kernel
+
+    ev, res = function_address(ev_iv, EVALUATOR_TYPE), function_address(res_iv, EVALUATOR_TYPE)
+    m = robot.n
+    A, b, g, f = _robot_data(robot, range(m), Interval.point, com_at_origin=True)
+    params = _parameters(A, b, g, f, None)
+    P = np.zeros((1, len(params), 4))  # (lo, hi, 0, 0): real intervals
+    for k, v in enumerate(params):
+        v = v if isinstance(v, Interval) else Interval.point(v)
+        P[0, k, 0], P[0, k, 1] = float(v.lo), float(v.hi)
+    X0 = np.zeros((1, 12 + m))
+    X0[0, :3] = G
+    rows_, cols_ = np.asarray(rows, dtype=np.int64), np.asarray(cols, dtype=np.int64)
+
+    def kernel(part, y, r):
+        y = np.ascontiguousarray(y, dtype=float)
+        K_lo, K_hi = np.empty_like(y), np.empty_like(y)
+        ok = np.zeros(len(y), dtype=bool)
+        N = len(y)
+        real_subsystem_krawczyk_kernel(ev, res, y, np.ascontiguousarray(r, dtype=float),
+                                       np.repeat(P, N, axis=0), np.repeat(X0, N, axis=0), rows_, cols_, K_lo, K_hi,
+                                       ok)
+        return Interval(K_lo, K_hi), ok
+
+    return kernel
 
 
 COLUMNS_FROM = 16  # points from which one evaluation on numpy columns beats one evaluation per point

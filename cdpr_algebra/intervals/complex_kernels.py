@@ -12,6 +12,9 @@ here).
 batch of roots, the operator of :func:`.operators.krawczyk` on the realified system (Cauchy-Riemann), root by root
 without the GIL: J over the box and F at its centre by the rewritten evaluators, C = mid(J)^-1, and the
 midpoint-radius products of :func:`.operators.mr_matmul` (Rump 1999, with the same rounding-error bound).
+:func:`real_subsystem_krawczyk_kernel` is the same operator (:func:`_krawczyk_operator`) over real boxes of a square
+subsystem (chosen rows and unknowns, the other unknowns fixed at real points) of such an evaluator, for
+:func:`.real_krawczyk.certify_real_roots`.
 """
 
 from __future__ import annotations
@@ -23,7 +26,7 @@ from numba import types as nbt
 from .arithmetic import _INF
 from .scalar_kernels import rounding_gamma, s_add, s_down, s_mid, s_midrad, s_mr_bound, s_mul, s_sub, s_up
 
-__all__ = ["OPERATIONS", "EVALUATOR_SIG", "EVALUATOR_TYPE", "krawczyk_kernel"]
+__all__ = ["OPERATIONS", "EVALUATOR_SIG", "EVALUATOR_TYPE", "krawczyk_kernel", "real_subsystem_krawczyk_kernel"]
 
 _J = dict(cache=True, error_model="numpy")
 
@@ -179,6 +182,72 @@ def _mr_product(Am, Ar, Bm, Br, with_ar, lo, hi):
             lo[i, j], hi[i, j] = s_mr_bound(S1[i, j], s2, S3[i, j] + s2, g, k)
 
 
+@nb.njit(**_J)
+def _krawczyk_operator(Jlo, Jhi, Flo, Fhi, y, r, C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr, CFlo, CFhi, MDlo, MDhi,
+                       Klo, Khi):
+    """K(X, y) = y - C F(y) + (I - C J(X)) (X - y), C = mid(J(X))^-1, for one box X = [y - r, y + r] (the floats
+    fl(y -+ r)) from J(X) = [Jlo, Jhi] (h, h) and F(y) = [Flo, Fhi] (h,); the other arrays are workspace of their
+    shapes ((h, h) or (h, 1)).  Writes Klo, Khi (h,); returns False (K = (-inf, inf)) when C could not be formed
+    with a condition estimate below 1e14.  The operator of :func:`.operators.krawczyk`."""
+    h = len(y)
+    good = True
+    for a in range(h):
+        for b in range(h):
+            Jm[a, b] = s_mid(Jlo[a, b], Jhi[a, b])
+            if not np.isfinite(Jm[a, b]):
+                good = False
+    if good:
+        try:
+            C[:, :] = np.linalg.inv(Jm)
+        except Exception:  # singular midpoint matrix
+            good = False
+    if good:
+        c1 = 0.0
+        c2 = 0.0
+        for a in range(h):
+            r1 = 0.0
+            r2 = 0.0
+            for b in range(h):
+                r1 += abs(C[a, b])
+                r2 += abs(Jm[a, b])
+            c1 = max(c1, r1)
+            c2 = max(c2, r2)
+        cond = c1 * c2
+        good = np.isfinite(cond) and cond < 1e14
+    if not good:
+        for k in range(h):
+            Klo[k], Khi[k] = -_INF, _INF
+        return False
+    for k in range(h):
+        Fm[k, 0], Fr[k, 0] = s_midrad(Flo[k], Fhi[k])
+    _mr_product(C, C, Fm, Fr, False, CFlo, CFhi)  # C F(y)
+    for a in range(h):
+        for b in range(h):
+            Jm[a, b], Jr[a, b] = s_midrad(Jlo[a, b], Jhi[a, b])
+    _mr_product(C, C, Jm, Jr, False, Mlo, Mhi)  # C J(X), then I - C J(X)
+    for a in range(h):
+        for b in range(h):
+            d = 1.0 if a == b else 0.0
+            lo_, hi_ = s_down(d - Mhi[a, b]), s_up(d - Mlo[a, b])
+            Mm[a, b], Mr[a, b] = s_midrad(lo_, hi_)
+    for k in range(h):  # X - y
+        dl, dh = s_sub(y[k] - r[k], y[k] + r[k], y[k], y[k])
+        Dm[k, 0], Dr[k, 0] = s_midrad(dl, dh)
+    _mr_product(Mm, Mr, Dm, Dr, True, MDlo, MDhi)
+    for k in range(h):
+        yl, yh = s_sub(y[k], y[k], CFlo[k, 0], CFhi[k, 0])
+        Klo[k], Khi[k] = s_add(yl, yh, MDlo[k, 0], MDhi[k, 0])
+    return True
+
+
+@nb.njit(**_J)
+def _workspace(h):
+    """The work arrays of :func:`_krawczyk_operator` for h unknowns."""
+    return (np.zeros((h, h)), np.zeros((h, h)), np.zeros((h, h)), np.zeros((h, 1)), np.zeros((h, 1)),
+            np.zeros((h, h)), np.zeros((h, h)), np.zeros((h, h)), np.zeros((h, h)), np.zeros((h, 1)),
+            np.zeros((h, 1)), np.zeros((h, 1)), np.zeros((h, 1)), np.zeros((h, 1)), np.zeros((h, 1)))
+
+
 @nb.njit(nbt.void(EVALUATOR_TYPE, EVALUATOR_TYPE, nbt.float64[:, ::1], nbt.float64[:, ::1], nbt.float64[:, :, ::1],
                   nbt.float64[:, ::1], nbt.float64[:, ::1], nbt.boolean[::1]),
          cache=True, error_model="numpy", nogil=True)
@@ -186,7 +255,8 @@ def krawczyk_kernel(jac, res, Y, R, P, Klo, Khi, ok):
     """K(X, y) for the boxes X = Y -+ R (N, 2n: real parts, then imaginary parts) of the complex system whose
     rewritten evaluators are ``jac`` (J over a box, pattern entries) and ``res`` (F at a point), the parameters of
     root i in P[i] (np, 4).  Writes Klo, Khi (N, 2n) and ok (N,): C = mid(J(X))^-1 could be formed with a
-    condition estimate below 1e14 (elsewhere K = (-inf, inf)).  The operator of :func:`.operators.krawczyk`."""
+    condition estimate below 1e14 (elsewhere K = (-inf, inf)).  The operator of :func:`.operators.krawczyk`
+    (:func:`_krawczyk_operator`) on the realified Jacobian [[Re J, -Im J], [Im J, Re J]]."""
     N, h = Y.shape
     n = h // 2
     x = np.zeros((n, 4))
@@ -194,21 +264,9 @@ def krawczyk_kernel(jac, res, Y, R, P, Klo, Khi, ok):
     J = np.zeros((n, n, 4))
     Jlo = np.zeros((h, h))
     Jhi = np.zeros((h, h))
-    Jm = np.zeros((h, h))
-    Jr = np.zeros((h, h))
-    Fm = np.zeros((h, 1))
-    Fr = np.zeros((h, 1))
-    C = np.zeros((h, h))
-    Mlo = np.zeros((h, h))
-    Mhi = np.zeros((h, h))
-    Mm = np.zeros((h, h))
-    Mr = np.zeros((h, h))
-    Dm = np.zeros((h, 1))
-    Dr = np.zeros((h, 1))
-    CFlo = np.zeros((h, 1))
-    CFhi = np.zeros((h, 1))
-    MDlo = np.zeros((h, 1))
-    MDhi = np.zeros((h, 1))
+    Flo = np.zeros(h)
+    Fhi = np.zeros(h)
+    C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr, CFlo, CFhi, MDlo, MDhi = _workspace(h)
     for i in range(N):
         p = P[i]
         for k in range(n):
@@ -224,56 +282,52 @@ def krawczyk_kernel(jac, res, Y, R, P, Klo, Khi, ok):
                 Jlo[n + a, n + b], Jhi[n + a, n + b] = rl, rh
                 Jlo[n + a, b], Jhi[n + a, b] = il, ih
                 Jlo[a, n + b], Jhi[a, n + b] = -ih, -il
-        good = True
-        for a in range(h):
-            for b in range(h):
-                Jm[a, b] = s_mid(Jlo[a, b], Jhi[a, b])
-                if not np.isfinite(Jm[a, b]):
-                    good = False
-        if good:
-            try:
-                C[:, :] = np.linalg.inv(Jm)
-            except Exception:  # singular midpoint matrix
-                good = False
-        if good:
-            c1 = 0.0
-            c2 = 0.0
-            for a in range(h):
-                r1 = 0.0
-                r2 = 0.0
-                for b in range(h):
-                    r1 += abs(C[a, b])
-                    r2 += abs(Jm[a, b])
-                c1 = max(c1, r1)
-                c2 = max(c2, r2)
-            cond = c1 * c2
-            good = np.isfinite(cond) and cond < 1e14
-        ok[i] = good
-        if not good:
-            for k in range(h):
-                Klo[i, k], Khi[i, k] = -_INF, _INF
-            continue
         # F at the centre y (point intervals), realified
         for k in range(n):
             x[k, 0], x[k, 1], x[k, 2], x[k, 3] = Y[i, k], Y[i, k], Y[i, n + k], Y[i, n + k]
         res(x, p, p, F, J, F, False)
         for k in range(n):
-            Fm[k, 0], Fr[k, 0] = s_midrad(F[k, 0], F[k, 1])
-            Fm[n + k, 0], Fr[n + k, 0] = s_midrad(F[k, 2], F[k, 3])
-        _mr_product(C, C, Fm, Fr, False, CFlo, CFhi)  # C F(y)
-        for a in range(h):
-            for b in range(h):
-                Jm[a, b], Jr[a, b] = s_midrad(Jlo[a, b], Jhi[a, b])
-        _mr_product(C, C, Jm, Jr, False, Mlo, Mhi)  # C J(X), then I - C J(X)
-        for a in range(h):
-            for b in range(h):
-                d = 1.0 if a == b else 0.0
-                lo_, hi_ = s_down(d - Mhi[a, b]), s_up(d - Mlo[a, b])
-                Mm[a, b], Mr[a, b] = s_midrad(lo_, hi_)
-        for k in range(h):  # X - y
-            dl, dh = s_sub(Y[i, k] - R[i, k], Y[i, k] + R[i, k], Y[i, k], Y[i, k])
-            Dm[k, 0], Dr[k, 0] = s_midrad(dl, dh)
-        _mr_product(Mm, Mr, Dm, Dr, True, MDlo, MDhi)
+            Flo[k], Fhi[k] = F[k, 0], F[k, 1]
+            Flo[n + k], Fhi[n + k] = F[k, 2], F[k, 3]
+        ok[i] = _krawczyk_operator(Jlo, Jhi, Flo, Fhi, Y[i], R[i], C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr,
+                                   CFlo, CFhi, MDlo, MDhi, Klo[i], Khi[i])
+
+
+@nb.njit(nbt.void(EVALUATOR_TYPE, EVALUATOR_TYPE, nbt.float64[:, ::1], nbt.float64[:, ::1], nbt.float64[:, :, ::1],
+                  nbt.float64[:, ::1], nbt.int64[::1], nbt.int64[::1], nbt.float64[:, ::1], nbt.float64[:, ::1],
+                  nbt.boolean[::1]),
+         cache=True, error_model="numpy", nogil=True)
+def real_subsystem_krawczyk_kernel(jac, res, Y, R, P, X0, rows, cols, Klo, Khi, ok):
+    """K(X, y) for real boxes X = Y -+ R (N, h) of the square real subsystem F[rows](x) = 0 in the unknowns
+    x[cols] of a system with real coefficients whose rewritten complex-interval evaluators are ``jac`` and ``res``
+    (as :func:`krawczyk_kernel`), every other unknown of root i fixed at the real point X0[i] (N, n).  The real
+    parts of the complex enclosures enclose the real function over the real box (the imaginary parts are zero).
+    Writes Klo, Khi (N, h) and ok (N,) as :func:`krawczyk_kernel`."""
+    N, h = Y.shape
+    n = X0.shape[1]
+    x = np.zeros((n, 4))
+    F = np.zeros((n, 4))
+    J = np.zeros((n, n, 4))
+    Jlo = np.zeros((h, h))
+    Jhi = np.zeros((h, h))
+    Flo = np.zeros(h)
+    Fhi = np.zeros(h)
+    C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr, CFlo, CFhi, MDlo, MDhi = _workspace(h)
+    for i in range(N):
+        p = P[i]
+        for k in range(n):
+            x[k, 0], x[k, 1], x[k, 2], x[k, 3] = X0[i, k], X0[i, k], 0.0, 0.0
         for k in range(h):
-            yl, yh = s_sub(Y[i, k], Y[i, k], CFlo[k, 0], CFhi[k, 0])
-            Klo[i, k], Khi[i, k] = s_add(yl, yh, MDlo[k, 0], MDhi[k, 0])
+            x[cols[k], 0], x[cols[k], 1] = Y[i, k] - R[i, k], Y[i, k] + R[i, k]
+        J[:] = 0.0
+        jac(x, p, p, F, J, F, False)
+        for a in range(h):
+            for b in range(h):
+                Jlo[a, b], Jhi[a, b] = J[rows[a], cols[b], 0], J[rows[a], cols[b], 1]
+        for k in range(h):
+            x[cols[k], 0], x[cols[k], 1] = Y[i, k], Y[i, k]
+        res(x, p, p, F, J, F, False)
+        for k in range(h):
+            Flo[k], Fhi[k] = F[rows[k], 0], F[rows[k], 1]
+        ok[i] = _krawczyk_operator(Jlo, Jhi, Flo, Fhi, Y[i], R[i], C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr,
+                                   CFlo, CFhi, MDlo, MDhi, Klo[i], Khi[i])
