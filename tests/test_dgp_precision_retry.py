@@ -1,6 +1,6 @@
 """Issue 4, item 4 and issue 15: with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), paths that every
 double-precision retry left failed are tracked again in arbitrary precision before anything is reported: in Study
-parameters, by :func:`cdpr_algebra.homotopy.flint_tracker.hybrid_track` (the compiled double-double tracker
+parameters, by :func:`cdpr_algebra.homotopy.hybrid_tracker.hybrid_track` (the compiled double-double tracker
 :mod:`cdpr_algebra.homotopy.dd_tracker` wherever double precision fails; :mod:`cdpr_algebra.dgp.study_retrack`).
 
 Forced here: every double-precision attempt (affine, projective, Study) of one path of a 2-cable subproblem of seed

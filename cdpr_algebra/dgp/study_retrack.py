@@ -32,7 +32,7 @@ needs no verdict at infinity) they end on proven roots too.  Test 2: 123 failed 
 
 With ``retry_mpmath`` in the DGP's options (``cdpr dgp --mpmath-retry``), the Study paths still failed (at most
 ``max_mpmath_paths`` a run) are tracked once more from their start points by
-:func:`cdpr_algebra.homotopy.flint_tracker.hybrid_track`: in double precision, and in compiled double-double
+:func:`cdpr_algebra.homotopy.hybrid_tracker.hybrid_track`: in double precision, and in compiled double-double
 arithmetic (:mod:`cdpr_algebra.homotopy.dd_tracker` over the generated
 :mod:`cdpr_algebra.generated.study_equations_dd`, the same equations' one source) wherever double precision fails,
 to t = 0 without an endgame; an endpoint where Newton's method converges quadratically is then kept by the same
@@ -206,7 +206,7 @@ PRECISE_STEPS = 30000  # steps in double-double per path (~0.3 ms each, m = 4)
 def _rescue_in_extended_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts, max_paths: int) -> dict:
     """The Study paths ``spaths`` (from the start points Y1) of the run from P1 to P0 (seed, gamma: the homotopy is
     drawn again, as :func:`cdpr_algebra.homotopy.solve.solve_parameter_homotopy` drew it) that failed, at most
-    ``max_paths`` of them, tracked again with :func:`cdpr_algebra.homotopy.flint_tracker.hybrid_track` (double
+    ``max_paths`` of them, tracked again with :func:`cdpr_algebra.homotopy.hybrid_tracker.hybrid_track` (double
     precision, and double-double where it fails: :mod:`cdpr_algebra.homotopy.dd_tracker` over
     :mod:`cdpr_algebra.generated.study_equations_dd`; at most ``PRECISE_STEPS`` such steps per path) to t = te, then
     on to t = 0 (no endgame: a path that does not reach a regular point there stays failed).  Returns {path: (Study
@@ -215,7 +215,7 @@ def _rescue_in_extended_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: 
     from cdpr_algebra.generated.study_equations_dd import study_equations
     from cdpr_algebra.homotopy.dd_tracker import DoubleDoubleParameterHomotopy
     from cdpr_algebra.homotopy.endgame import refine
-    from cdpr_algebra.homotopy.flint_tracker import hybrid_track
+    from cdpr_algebra.homotopy.hybrid_tracker import hybrid_track
     from cdpr_algebra.homotopy.start_systems import parameter_homotopy
 
     bad = [j for j, q in enumerate(spaths) if q.status in FAILURES][:max_paths]

@@ -7,8 +7,8 @@ Flat topic modules, after HomotopyContinuation.jl:
 * :mod:`.tracker` -- vectorized RK4 / Newton path tracker of one segment, :func:`track_segment` (compiled:
   :mod:`.compiled`, with Newton residuals in double-double where double precision stalls, :mod:`.double_double`);
 * :mod:`.endgame` -- Cauchy endgame, at-infinity test, Newton refinement, retries (double, mpmath);
-* :mod:`.flint_tracker` -- the same step in arbitrary precision (python-flint) over a plain-Python evaluator, and
-  :func:`.flint_tracker.hybrid_track`: double precision, extended precision only where it fails;
+* :mod:`.flint_tracker` -- the same step in arbitrary precision (python-flint) over a plain-Python evaluator;
+* :mod:`.hybrid_tracker` -- double precision, extended precision only on the stretches where it fails;
 * :mod:`.dd_tracker` -- that step compiled in double-double over a rewritten generated evaluator;
 * :mod:`.start_systems` -- total degree, multi-homogeneous (linear product), parameter homotopy;
 * :mod:`.monodromy` -- generic solution sets from one seed point, saved/loaded instances;

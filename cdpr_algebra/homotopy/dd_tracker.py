@@ -248,7 +248,7 @@ def dd_track(evaluator, neq: int, p1, p0, gamma, x0, t_a, t_b, options, max_step
 class DoubleDoubleParameterHomotopy:
     """The parameter homotopy of a :class:`.homotopies.ParameterHomotopy` (same p1, p0, gamma) over a rewritten
     double-double evaluator (:data:`EQUATIONS_SIG`), tracked by :func:`dd_track` (the interface of
-    :func:`.flint_tracker.hybrid_track`)."""
+    :func:`.hybrid_tracker.hybrid_track`)."""
 
     def __init__(self, evaluator, neq: int, p1, p0, gamma=None):
         self.evaluator, self.neq = evaluator, int(neq)
@@ -261,9 +261,9 @@ class DoubleDoubleParameterHomotopy:
         return cls(evaluator, homotopy.neq, homotopy.p1, homotopy.p0, homotopy.gamma)
 
     def track(self, x0, t_a, t_b, options, max_steps: int, initial_step: float | None = None):
-        """:func:`dd_track` from x0 at t_a to t_b: a :class:`.flint_tracker.FlintSegment`."""
-        from .flint_tracker import FlintSegment
+        """:func:`dd_track` from x0 at t_a to t_b: a :class:`.hybrid_tracker.PreciseSegment`."""
+        from .hybrid_tracker import PreciseSegment
 
         x, t, status, steps = dd_track(self.evaluator, self.neq, self.p1, self.p0, self.gamma, x0, t_a, t_b, options,
                                        max_steps, initial_step)
-        return FlintSegment(x=x, t=t, status=status, steps=steps)
+        return PreciseSegment(x=x, t=t, status=status, steps=steps)

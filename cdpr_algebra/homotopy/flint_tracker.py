@@ -15,29 +15,27 @@ evaluator is the system's one source, only the number type changes.  Every value
 radii are not needed: nothing here is a proof; a rescued endpoint is refined and certified like any other).
 :func:`flint_track` is the double tracker's scheme (RK4 predictor, Newton corrector, predictor tolerance, step
 growth and shrinking: :mod:`.tracker`), with linear systems solved by ``acb_mat.solve(algorithm="approx")``.
-:func:`hybrid_track` tracks in double precision (:func:`.tracker.track_segment`) and hands only the stretches where
-it fails to an extended-precision twin of the homotopy (this module's, or the compiled double-double one of
-:mod:`.dd_tracker`, ~15x faster, which the DGP uses), in chunks of steps that double each round, then tries double
-precision again.
+:func:`.hybrid_tracker.hybrid_track` tracks in double precision and hands only the stretches where it fails to an
+extended-precision twin of the homotopy (this module's, or the compiled double-double one of :mod:`.dd_tracker`,
+~15x faster, which the DGP uses).
 
 Cost (measured, eighteenth session, m = 4, 12 unknowns, 106 bits): one evaluation ~0.45 ms, one step ~4 ms (RK4
 and three Newton updates: 7 evaluations, 7 solves), against ~10 us in the compiled double tracker.  On the 16 Study
-paths that seed 000 Test 3's DGP left failed (all runs of its subproblems), a first version of :func:`hybrid_track`
-(without the Newton updates at the start of :func:`flint_track`) brought 11 to regular endpoints (Newton
+paths that seed 000 Test 3's DGP left failed (all runs of its subproblems), a first version of
+:func:`.hybrid_tracker.hybrid_track` (without the Newton updates at the start of :func:`flint_track`) brought 11 to regular endpoints (Newton
 quadratic, condition numbers 6e2 .. 2e9) with 0 .. 3200 steps in arbitrary precision; the 5 others still crawled
 after 20,000.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 from flint import acb, acb_mat, ctx  # imported with this module only: nothing on the double-precision path imports it
 
+from .hybrid_tracker import PreciseSegment
 from .results import STEP_TOO_SMALL, SUCCESS, TOO_MANY_STEPS
 
-__all__ = ["FlintParameterHomotopy", "FlintSegment", "flint_track", "hybrid_track", "PRECISION"]
+__all__ = ["FlintParameterHomotopy", "flint_track", "PRECISION"]
 
 START_NEWTON = 8  # Newton updates at t_a that put the start point on the path at the working precision
 PRECISION = 106  # bits (double-double's): enough for every path measured above; 128 tracked the same ones
@@ -94,8 +92,8 @@ class FlintParameterHomotopy:
         dp = [_mid((g * a - b) / s - v * (g - 1) / (s * s)) for a, b, v in zip(p1, p0, num)]
         return p, dp
 
-    def track(self, x0, t_a, t_b, options, max_steps: int, initial_step: float | None = None) -> "FlintSegment":
-        """:func:`flint_track` of this homotopy at ``PRECISION`` bits (the interface of :func:`hybrid_track`)."""
+    def track(self, x0, t_a, t_b, options, max_steps: int, initial_step: float | None = None) -> PreciseSegment:
+        """:func:`flint_track` of this homotopy at ``PRECISION`` bits (the interface of :func:`.hybrid_tracker.hybrid_track`)."""
         return flint_track(self, x0, t_a, t_b, options, PRECISION, max_steps, initial_step)
 
     def evaluate_all(self, x, t, with_ht: bool = True):
@@ -129,19 +127,8 @@ def _norm(v) -> float:
     return max(abs(complex(c)) for c in v)
 
 
-@dataclass(frozen=True)
-class FlintSegment:
-    """One path tracked by :func:`flint_track` (or :func:`.dd_tracker.dd_track`): the last point reached (complex), its
-    t, status and steps."""
-
-    x: np.ndarray
-    t: complex
-    status: str
-    steps: int
-
-
 def flint_track(h: FlintParameterHomotopy, x0, t_a, t_b, options, prec: int = PRECISION, max_steps: int = 1000,
-                initial_step: float | None = None) -> FlintSegment:
+                initial_step: float | None = None) -> PreciseSegment:
     """Track x0 (a solution at t_a) along t = t_a + s (t_b - t_a), s: 0 -> 1, at ``prec`` bits: RK4 predictor on
     dx/ds = -H_x^{-1} H_t (t_b - t_a), three Newton updates d1, d2, d3 at t(s + h); accepted when |d1| <=
     ``options.predictor_tol`` (1 + |x|) and Newton contracts (|d2| <= ``options.max_contraction`` |d1|, |d3| <=
@@ -164,7 +151,7 @@ def flint_track(h: FlintParameterHomotopy, x0, t_a, t_b, options, prec: int = PR
             return _solve(J, [-v * dt for v in Ht])
 
         def done(status):
-            return FlintSegment(x=_complex(x), t=complex(ta + acb(s) * dt), status=status, steps=steps)
+            return PreciseSegment(x=_complex(x), t=complex(ta + acb(s) * dt), status=status, steps=steps)
 
         # x0 comes from a tracker in double precision that stopped where the condition number reached ~1e17: it may
         # lie off the path by far more than the predictor tolerance, and then every step would be rejected.
@@ -214,52 +201,4 @@ def flint_track(h: FlintParameterHomotopy, x0, t_a, t_b, options, prec: int = PR
                 if step < o.min_step:
                     return done(STEP_TOO_SMALL)
             rejected = not ok
-        return FlintSegment(x=_complex(x), t=complex(t_b), status=SUCCESS, steps=steps)
-
-
-@dataclass(frozen=True)
-class HybridSegment:
-    """One path tracked by :func:`hybrid_track`: as :class:`FlintSegment`, with the steps taken in extended precision
-    (``precise_steps``) among all ``steps``."""
-
-    x: np.ndarray
-    t: complex
-    status: str
-    steps: int
-    precise_steps: int
-
-
-def hybrid_track(homotopy, precise, x0, t_a, t_b, options, chunk: int = 200,
-                 max_precise_steps: int = 3000) -> HybridSegment:
-    """Track x0 from t_a to t_b in double precision (:func:`.tracker.track_segment` on ``homotopy``, ``options``);
-    where that fails, on from the last point it reached in extended precision (``precise.track``: a
-    :class:`FlintParameterHomotopy`, or the compiled double-double twin
-    :class:`.dd_tracker.DoubleDoubleParameterHomotopy`, of the same homotopy) for at most ``chunk`` steps, then in
-    double precision again, and so on, until t_b is reached, a tracker fails otherwise than by its step budget, or
-    ``max_precise_steps`` steps in extended precision are spent (then ``too_many_steps``).  The chunk doubles after
-    each round: a path that crawls for thousands of steps in extended precision (measured: 27,000 on a Test 3 path)
-    does not pay a failed double-precision run (up to ``options.max_steps`` steps) every ``chunk`` steps."""
-    from .tracker import track_segment
-
-    x, ta = np.asarray(x0, dtype=complex), complex(t_a)
-    steps = psteps = 0
-    while True:
-        seg = track_segment(homotopy, x[None], ta, t_b, options)
-        steps += int(seg.steps[0])
-        if seg.status[0] == SUCCESS:
-            return HybridSegment(seg.x[0], complex(t_b), SUCCESS, steps, psteps)
-        if seg.status[0] not in (STEP_TOO_SMALL, TOO_MANY_STEPS) or not np.all(np.isfinite(seg.x[0])):
-            return HybridSegment(seg.x[0], complex(seg.t[0]), str(seg.status[0]), steps, psteps)
-        x, ta = seg.x[0], complex(seg.t[0])
-        budget = min(chunk, max_precise_steps - psteps)
-        chunk *= 2
-        if budget <= 0:
-            return HybridSegment(x, ta, TOO_MANY_STEPS, steps, psteps)
-        pr = precise.track(x, ta, t_b, options, budget, initial_step=min(options.initial_step, 1e-4))
-        psteps += pr.steps
-        steps += pr.steps
-        if pr.status == SUCCESS:
-            return HybridSegment(pr.x, complex(t_b), SUCCESS, steps, psteps)
-        if pr.status != TOO_MANY_STEPS:
-            return HybridSegment(pr.x, pr.t, pr.status, steps, psteps)
-        x, ta = pr.x, pr.t
+        return PreciseSegment(x=_complex(x), t=complex(t_b), status=SUCCESS, steps=steps)
