@@ -794,7 +794,7 @@ def certify_igp_positions(robot, com_position, roots, box_rtol: float = BOX_RTOL
 
 def _compiled_subsystem_krawczyk(robot, G, rows, cols):
     """The Krawczyk operator of the IGP with assigned position over real boxes of (u, v, w, lam), compiled
-    (:func:`cdpr_algebra.intervals.complex_kernels.real_subsystem_krawczyk_kernel`): rows ``rows`` and columns
+    (:func:`cdpr_algebra.intervals.real_kernels.real_subsystem_krawczyk_kernel`): rows ``rows`` and columns
     ``cols`` of the generated interval evaluator :mod:`cdpr_algebra.generated.taut_equations_intervals` of the
     taut system with all m = n cables, the platform frame moved to G (b_i' - g' enclosed, g' = 0), p = G exact,
     Q d enclosed (the length rows, not used, get rho_i^2 = 0).  Returns kernel(part, y, r) -> (K, ok), the same
@@ -802,7 +802,8 @@ def _compiled_subsystem_krawczyk(robot, G, rows, cols):
     from cdpr_algebra.generated.taut_equations_intervals import taut_equations as ev_iv, taut_residual as res_iv
     from cdpr_algebra.homotopy.compiled import function_address
     from cdpr_algebra.intervals.arithmetic import Interval
-    from cdpr_algebra.intervals.complex_kernels import EVALUATOR_TYPE, real_subsystem_krawczyk_kernel
+    from cdpr_algebra.intervals.complex_kernels import EVALUATOR_TYPE
+    from cdpr_algebra.intervals.real_kernels import real_subsystem_krawczyk_kernel
 
     ev, res = function_address(ev_iv, EVALUATOR_TYPE), function_address(res_iv, EVALUATOR_TYPE)
     m = robot.n

@@ -5,7 +5,8 @@
 numba compiles the kernels (tracker, DGP evaluators, interval contractors, equilibrium tracking) on first use and
 caches them next to the package's sources, keyed by the sources' contents, the numba version and the CPU; a first
 run would otherwise spend 10-15 s compiling.  This command solves each robot once -- the homotopy DGP, the interval
-branch and prune (cables m <= 3) and a short equilibrium tracking -- so that every later run loads the kernels.
+branch and prune (cables m <= 3) and a short equilibrium tracking -- and loads the kernel of the IGP's
+certificates, so that every later run loads the kernels.
 ``pip install .`` runs it at build time on ``examples/seed000_test1.toml`` (``setup.py``); run it yourself where the
 package was built on another machine (a wheel from elsewhere: another CPU means other machine code) or in an image.
 """
@@ -39,6 +40,7 @@ def warm_kernels(robot) -> dict:
     t0 = time.perf_counter()
     dgp(robot, jobs=1)
     warm_study_kernels()  # the re-tracking of failed paths, which a robot without them never reaches
+    import cdpr_algebra.intervals.real_kernels  # noqa: F401  the IGP's certificates (compiled when imported)
     fam = fast_family(2)  # dF/dp of the taut family (monodromy, trace tests), which the DGP's compiled tracker skips
     fam.evaluate_all(np.ones(fam.n, dtype=complex), np.ones(fam.m, dtype=complex))
     seconds["dgp"] = time.perf_counter() - t0

@@ -12,9 +12,8 @@ here).
 batch of roots, the operator of :func:`.operators.krawczyk` on the realified system (Cauchy-Riemann), root by root
 without the GIL: J over the box and F at its centre by the rewritten evaluators, C = mid(J)^-1, and the
 midpoint-radius products of :func:`.operators.mr_matmul` (Rump 1999, with the same rounding-error bound).
-:func:`real_subsystem_krawczyk_kernel` is the same operator (:func:`_krawczyk_operator`) over real boxes of a square
-subsystem (chosen rows and unknowns, the other unknowns fixed at real points) of such an evaluator, for
-:func:`.real_krawczyk.certify_real_roots`.
+:func:`.real_kernels.real_subsystem_krawczyk_kernel` applies the same operator (:func:`_krawczyk_operator`) to real
+boxes of a square subsystem of such an evaluator.
 """
 
 from __future__ import annotations
@@ -26,7 +25,7 @@ from numba import types as nbt
 from .arithmetic import _INF
 from .scalar_kernels import rounding_gamma, s_add, s_down, s_mid, s_midrad, s_mr_bound, s_mul, s_sub, s_up
 
-__all__ = ["OPERATIONS", "EVALUATOR_SIG", "EVALUATOR_TYPE", "krawczyk_kernel", "real_subsystem_krawczyk_kernel"]
+__all__ = ["OPERATIONS", "EVALUATOR_SIG", "EVALUATOR_TYPE", "krawczyk_kernel"]
 
 _J = dict(cache=True, error_model="numpy")
 
@@ -289,45 +288,5 @@ def krawczyk_kernel(jac, res, Y, R, P, Klo, Khi, ok):
         for k in range(n):
             Flo[k], Fhi[k] = F[k, 0], F[k, 1]
             Flo[n + k], Fhi[n + k] = F[k, 2], F[k, 3]
-        ok[i] = _krawczyk_operator(Jlo, Jhi, Flo, Fhi, Y[i], R[i], C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr,
-                                   CFlo, CFhi, MDlo, MDhi, Klo[i], Khi[i])
-
-
-@nb.njit(nbt.void(EVALUATOR_TYPE, EVALUATOR_TYPE, nbt.float64[:, ::1], nbt.float64[:, ::1], nbt.float64[:, :, ::1],
-                  nbt.float64[:, ::1], nbt.int64[::1], nbt.int64[::1], nbt.float64[:, ::1], nbt.float64[:, ::1],
-                  nbt.boolean[::1]),
-         cache=True, error_model="numpy", nogil=True)
-def real_subsystem_krawczyk_kernel(jac, res, Y, R, P, X0, rows, cols, Klo, Khi, ok):
-    """K(X, y) for real boxes X = Y -+ R (N, h) of the square real subsystem F[rows](x) = 0 in the unknowns
-    x[cols] of a system with real coefficients whose rewritten complex-interval evaluators are ``jac`` and ``res``
-    (as :func:`krawczyk_kernel`), every other unknown of root i fixed at the real point X0[i] (N, n).  The real
-    parts of the complex enclosures enclose the real function over the real box (the imaginary parts are zero).
-    Writes Klo, Khi (N, h) and ok (N,) as :func:`krawczyk_kernel`."""
-    N, h = Y.shape
-    n = X0.shape[1]
-    x = np.zeros((n, 4))
-    F = np.zeros((n, 4))
-    J = np.zeros((n, n, 4))
-    Jlo = np.zeros((h, h))
-    Jhi = np.zeros((h, h))
-    Flo = np.zeros(h)
-    Fhi = np.zeros(h)
-    C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr, CFlo, CFhi, MDlo, MDhi = _workspace(h)
-    for i in range(N):
-        p = P[i]
-        for k in range(n):
-            x[k, 0], x[k, 1], x[k, 2], x[k, 3] = X0[i, k], X0[i, k], 0.0, 0.0
-        for k in range(h):
-            x[cols[k], 0], x[cols[k], 1] = Y[i, k] - R[i, k], Y[i, k] + R[i, k]
-        J[:] = 0.0
-        jac(x, p, p, F, J, F, False)
-        for a in range(h):
-            for b in range(h):
-                Jlo[a, b], Jhi[a, b] = J[rows[a], cols[b], 0], J[rows[a], cols[b], 1]
-        for k in range(h):
-            x[cols[k], 0], x[cols[k], 1] = Y[i, k], Y[i, k]
-        res(x, p, p, F, J, F, False)
-        for k in range(h):
-            Flo[k], Fhi[k] = F[rows[k], 0], F[rows[k], 1]
         ok[i] = _krawczyk_operator(Jlo, Jhi, Flo, Fhi, Y[i], R[i], C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr,
                                    CFlo, CFhi, MDlo, MDhi, Klo[i], Khi[i])

@@ -5,7 +5,7 @@ For boxes X = y +/- r (the floats fl(y -+ r)), the Krawczyk operator K(X, y) = y
 (R. Krawczyk 1969, R. E. Moore 1977).  Epsilon-inflation (Rump): start from a tiny box around each refined root,
 enlarge r from |K(X) - y| until the test passes or r passes the width limit; the rounds of
 :func:`.complex_krawczyk._krawczyk_round`, on the real space.  The operator comes from the caller, compiled (e.g.
-:func:`.complex_kernels.real_subsystem_krawczyk_kernel`), so a batch of roots costs no Python per root.
+:func:`.real_kernels.real_subsystem_krawczyk_kernel`), so a batch of roots costs no Python per root.
 """
 
 from __future__ import annotations
