@@ -116,8 +116,9 @@ PHASES = (("phase 1, t = 1 -> 0.1", "phase1"), ("re-tracks in the chart, t = 1 -
           ("endgame samples", "samples"), ("endgame samples in the chart", "samples_chart"),
           ("Cauchy loops", "loops"), ("Cauchy loops in the chart", "loops_chart"),
           ("detours around phase-1 failures", "detour"), ("detours in the chart", "detour_chart"),
-          ("failed paths in Study parameters, t = 1 -> 0.1", "phase1_study"), ("finish in Study parameters", "to0_study"),
-          ("endgame samples in Study parameters", "samples_study"), ("Cauchy loops in Study parameters", "loops_study"))
+          ("Study parameters, t = 1 -> 0.1", "phase1_study"), ("finish in Study parameters", "to0_study"),
+          ("endgame samples in Study parameters", "samples_study"), ("Cauchy loops in Study parameters", "loops_study"),
+          ("detours in Study parameters", "detour_study"))
 
 
 TE = EndgameOptions().endgame_start
@@ -149,7 +150,7 @@ class _PhaseCounter:
             if getattr(hom, "chart", None) is not None:
                 kind += "_chart"
             elif isinstance(getattr(hom, "system", None), FastStudySystem):
-                kind += "_study"  # dgp.study_retrack
+                kind += "_study"  # dgp.study_retrack: the first run of every path, and re-tracks
             sec, steps, calls = self.acc.get(kind, (0.0, 0, 0))
             self.acc[kind] = (sec + time.perf_counter() - t0, steps + int(r.steps.sum()), calls + 1)
             return r

@@ -166,13 +166,15 @@ def test_extended_precision_completes_marionet_subproblems(cables, monkeypatch):
     """Seed 000 Test 3, taut sets {2, 4, 5} and {3, 4, 5, 6}: some paths fail in double precision (without the
     re-tracking in Study parameters); with the extended residual (``default_options(extended=True)``) none does, the
     outcomes account for every path, every regular endpoint is certified, and the regular solutions found without it
-    are among those found with it.  The default DGP (double precision, then failed paths re-tracked in Study
-    parameters with double-double residuals, dgp.study_retrack) completes them too, every path regular and certified
+    are among those found with it.  Failed paths re-tracked in Study parameters with double-double residuals
+    (dgp.study_retrack, the pipeline before Study came first) complete them too, every path regular and certified,
+    and so does the default DGP (every path in Study parameters first), with the same outcomes and solutions
     (on {2, 4, 5} the extended run ends 4 paths singular, which the Study run ends on 4 distinct certified roots)."""
     from cdpr_algebra.dgp import solve as D
     from cdpr_algebra.dgp.solve import solve_taut_set
 
     robot = load_robot(EXAMPLES / "seed000_test3.toml")
+    monkeypatch.setattr(D, "STUDY_FIRST", False)  # the taut system first (the pipeline before Study came first)
     monkeypatch.setattr(D, "STUDY_RETRACK", False)
     plain, _ = solve_taut_set(robot, robot.lengths, cables, options=default_options())
     ext, _ = solve_taut_set(robot, robot.lengths, cables, options=default_options(extended=True))
@@ -186,6 +188,10 @@ def test_extended_precision_completes_marionet_subproblems(cables, monkeypatch):
     assert study.certified == study.outcomes["regular"] >= ext.outcomes["regular"]
     assert study.real >= plain.real and study.admissible == ext.admissible
     assert study.retried.get("study", 0) > 0 and study.to_dict()["retried"] == study.retried
+    monkeypatch.setattr(D, "STUDY_FIRST", True)  # the default: every path in Study parameters first
+    first, _ = solve_taut_set(robot, robot.lengths, cables, options=default_options())
+    assert first.complete and first.outcomes == study.outcomes and first.certified == study.certified
+    assert (first.finite, first.real, first.admissible) == (study.finite, study.real, study.admissible)
 
 
 def test_cli_extended_precision(capsys):
@@ -201,7 +207,7 @@ def test_cli_extended_precision(capsys):
 
 def test_crosscheck_compares_what_extended_precision_completes(capsys, monkeypatch):
     """`cdpr crosscheck` on Test 3's taut set {2, 4, 5}: the homotopy's account is incomplete in double precision
-    (without the re-tracking in Study parameters), so the subproblem is not compared; with --extended-precision it is
+    (the taut system alone, without Study parameters), so the subproblem is not compared; with --extended-precision it is
     complete and agrees with the interval solver."""
     import json
 
@@ -209,6 +215,7 @@ def test_crosscheck_compares_what_extended_precision_completes(capsys, monkeypat
     from cdpr_algebra.dgp import solve as D
 
     path = str(EXAMPLES / "seed000_test3.toml")
+    monkeypatch.setattr(D, "STUDY_FIRST", False)
     monkeypatch.setattr(D, "STUDY_RETRACK", False)
     main(["crosscheck", path, "--taut", "2", "4", "5", "--jobs", "1", "--json"])
     plain = json.loads(capsys.readouterr().out)

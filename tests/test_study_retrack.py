@@ -134,6 +134,7 @@ def test_ill_conditioned_study_limits_are_rescued_and_proven(monkeypatch):
     rho = np.asarray(robot.lengths, float)
     cables = (0, 1, 3, 5)
     target, c, L, Rw, cb = S._normalized(robot, rho, cables)
+    monkeypatch.setattr(S, "STUDY_FIRST", False)  # the taut system first, then the re-track of its failures
     monkeypatch.setattr(S, "STUDY_RETRACK", False)
     res, failed = S._track(4, target, 0, gamma=False)
     assert failed >= 30
@@ -151,6 +152,70 @@ def test_ill_conditioned_study_limits_are_rescued_and_proven(monkeypatch):
     monkeypatch.setattr(SR, "_limit_of_one_sheet", lambda q, o: False)
     _, before = retrack_failed_in_study(S.fast_family(4), res, 4, p_gen, X_gen, target, 0, False, S.default_options())
     assert before <= rescued - 30
+    # the default DGP tracks every path in Study parameters first: 216 regular points, none failed, the same ones
+    monkeypatch.undo()
+    first, failed = S._track(4, target, 0, gamma=False)
+    assert failed == 0 and all(p.status == SUCCESS and p.retried == "" for p in first.track.paths)
+    # path by path (the same parameter path: the same solution curve), the same point: to 1e-8 where the re-track
+    # ended regular too, to the endgame's accuracy (~1e-7) where it ended singular (its Cauchy estimate)
+    for a, b in zip(first.track.paths, again.track.paths):
+        d = np.abs(a.endpoint - b.endpoint).max() / (1 + np.abs(b.endpoint).max())
+        assert d <= (1e-8 if b.status == SUCCESS else 1e-6), (a.index, b.status, d)
+
+
+def _fallback_case(monkeypatch, study_failed, taut_points):
+    """:func:`track_study_first` on seed 000 Test 1's taut set {1, 2} (24 paths) with the Study run's paths
+    ``study_failed`` made failed and the taut system's run replaced: ``taut_points(rows, study) -> {row: endpoint}``
+    (``study``: the Study run's endpoints).  Returns (result, the rows the taut system was asked for, per call)."""
+    from cdpr_algebra.dgp import study_retrack as SR
+    from cdpr_algebra.homotopy.results import PathResult, SolveResult, TrackResult
+
+    robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
+    target = S._normalized(robot, np.asarray(robot.lengths, float), (0, 1))[0]
+    p_gen, X_gen = S._generic(2)
+    real = SR.retrack_failed_in_study
+    seen = {}
+
+    def study_run(*a, **k):
+        res, n = real(*a, **k)
+        seen["study"] = [p.endpoint for p in res.track.paths]
+        paths = tuple(replace(p, status=STEP_TOO_SMALL) if p.index in study_failed else p for p in res.track.paths)
+        return replace(res, track=replace(res.track, paths=paths)), n
+
+    calls = []
+
+    def track_taut(rows):
+        calls.append(list(rows))
+        pts = taut_points(list(rows), seen["study"])
+        paths = tuple(PathResult(k, SUCCESS, pts[i], 0j, 1e-16, 10.0, 1e-14, 7) for k, i in enumerate(rows))
+        return SolveResult(solutions=(), track=TrackResult(paths=paths, seconds=0.0))
+
+    monkeypatch.setattr(SR, "retrack_failed_in_study", study_run)
+    res = SR.track_study_first(S.fast_family(2), 2, p_gen, X_gen, target, 0, False, S.default_options(), track_taut)
+    return res, calls, seen["study"]
+
+
+def test_study_first_takes_the_taut_outcome_of_what_study_leaves_failed(monkeypatch):
+    """A path the Study run leaves failed is tracked in the taut system and takes that outcome (retried "taut");
+    a taut endpoint on a point a Study path holds sends that Study path to the taut system too: when it ends on a
+    new point there, both stand (the Study run had jumped), else the taut path is path_jumping (nothing merged)."""
+    from cdpr_algebra.dgp.study_retrack import TAUT_FALLBACK
+    from cdpr_algebra.homotopy.results import PATH_JUMPING, outcome_counts
+
+    # path 3 failed in Study, its taut run ends on its own Study point: kept
+    res, calls, study = _fallback_case(monkeypatch, {3}, lambda rows, st: {i: st[i] for i in rows})
+    assert calls == [[3]] and res.track.paths[3].status == SUCCESS and res.track.paths[3].retried == TAUT_FALLBACK
+    assert outcome_counts(res.track.paths)["regular"] == 24 and len(res.solutions) == 24
+    # path 3's taut run ends on path 5's Study point, and path 5 ends there in the taut system too: path jumping
+    res, calls, study = _fallback_case(monkeypatch, {3}, lambda rows, st: {i: st[5] for i in rows})
+    assert calls == [[3], [5]] and res.track.paths[3].status == PATH_JUMPING
+    assert res.track.paths[5].status == SUCCESS and res.track.paths[5].retried == ""  # the Study outcome stands
+    assert outcome_counts(res.track.paths)["failed"] == 1 and len(res.solutions) == 23
+    # ... but path 5 ends on path 3's Study point in the taut system: the Study run of path 5 had jumped
+    res, calls, study = _fallback_case(monkeypatch, {3}, lambda rows, st: {i: st[5] if i == 3 else st[3] for i in rows})
+    assert calls == [[3], [5]] and res.track.paths[3].status == SUCCESS and res.track.paths[5].status == SUCCESS
+    assert res.track.paths[5].retried == TAUT_FALLBACK
+    assert outcome_counts(res.track.paths)["regular"] == 24 and len(res.solutions) == 24
 
 
 def test_limit_of_one_sheet_needs_one_sheet_a_solution_and_a_pose():
@@ -179,7 +244,7 @@ def test_limit_of_one_sheet_needs_one_sheet_a_solution_and_a_pose():
     assert not _limit_of_one_sheet(path(endpoint=np.concatenate([iso, np.ones(6)]), accuracy=1e-8), o)
 
 
-def test_study_limits_on_the_quadric_n_zero_are_at_infinity():
+def test_study_limits_on_the_quadric_n_zero_are_at_infinity(monkeypatch):
     """Seed 002's 8-cable robot, taut set {1, 2, 5}: 31 of its 156 paths fail in (p, u, v, w, lam) at t ~ 1e-4 with
     |x| ~ 1e5 (without the Study run's verdict they stayed failed, fifteenth session).  In Study parameters they
     converge (winding number 2) to points of the quadric N = e . e = 0, where no pose is: the rotation R = Q(e) / N
@@ -191,9 +256,15 @@ def test_study_limits_on_the_quadric_n_zero_are_at_infinity():
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
     rho = np.asarray(robot.lengths, float)
     target = S._normalized(robot, rho, (0, 1, 4))[0]
+    monkeypatch.setattr(S, "STUDY_FIRST", False)  # the taut system first, then the re-track of its failures
     res, failed = S._track(3, target, 0, gamma=False)
     assert failed == 0 and outcome_counts(res.track.paths) == {"regular": 100, "singular": 0, "at_infinity": 56,
                                                                "failed": 0}
+    monkeypatch.setattr(S, "STUDY_FIRST", True)  # the default: the same account from the Study run itself
+    first, failed = S._track(3, target, 0, gamma=False)
+    assert failed == 0 and outcome_counts(first.track.paths) == outcome_counts(res.track.paths)
+    assert {p.index for p in first.track.paths if p.status == AT_INFINITY} == {
+        p.index for p in res.track.paths if p.status == AT_INFINITY}
     study = [p for p in res.track.paths if p.retried == "study"]
     assert len(study) >= 25 and all(p.status == AT_INFINITY for p in study)
     assert all(p.winding_number >= 2 and 0 < p.order <= 1 for p in study)

@@ -9,7 +9,20 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   with one target: :func:`cdpr_algebra.homotopy.solve.solve_parameter_homotopy`, which re-tracks failed or
   coinciding paths itself) from the stored generic solution set of :func:`cdpr_algebra.model.taut_equations.taut_family`
   (``cdpr_algebra/data/dgp_generic_m{m}.json``, made by ``derivations/solve_generic_dgp.py``) to the robot's
-  parameters.  Subproblems whose m has no stored set are reported as skipped.  The robot is first normalized
+  parameters, **every path in Study parameters first** (``STUDY_FIRST``, :func:`.study_retrack.track_study_first`:
+  Euler parameters on a chart, where the near-isotropic complex rotations that ruin the conditioning of
+  (p, u, v, w, lam) are ordinary points; a path is kept there when its endpoint, mapped back, is a Newton-quadratic
+  root of the taut system distinct from every other, or at infinity when its limit lies on N = e . e = 0; the run
+  makes detours around phase-1 failures, since it holds every path), then the paths it leaves undecided in the
+  taut system along the same parameter path with that engine's own retries (below; no detours: they need every
+  path of the run) (retried ``taut``).  Measured (nineteenth session, 2 cores, against the taut system first with
+  failed paths re-tracked in Study parameters, ``python -m benchmarks.bench_against 3412981 --tests
+  test1,test3,test2 --rounds 2 --repeat 2``): seed 000 Test 3 5 -> 1 failed paths, 3 -> 1 incomplete subproblems,
+  37 -> 8 uncertified endpoints, 9.1 -> 11.2 s (a Study step costs ~19 us against ~12 us: its evaluator is cubic);
+  Test 2 4 -> 2, 4 -> 2, 134 -> 57, 15.3 -> 13.4 s (its ill-conditioned complex roots with |R| ~ 1e5, which the
+  taut system's endgame ended ``singular``, are regular points there); seed 002's 8-cable robot 138 -> 128 failed,
+  24 -> 21 incomplete, 59 -> 54 s (one run each); the same admissible equilibria.  Subproblems whose m has no
+  stored set are reported as skipped.  The robot is first normalized
   to the scale of the stored sets: base centred at the centroid c of the exit points, platform frame moved to
   the centroid cb of its points, world frame turned by Rw so that the load acts along -z, lengths divided by the
   cable geometry's scale L (:attr:`Robot.cable_scale`), load Q d replaced by -z; then R = Rw^T R^,
@@ -37,12 +50,12 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   the same parameter path with steps tightened 10x (one round,
   ``PROJECTIVE_RETRIES``: a second round tightened 100x rescued none of 181 paths on seed 000 Test 3 and none of
   639 on Test 2; the paths still failed there lose accuracy to conditioning, 1e10..1e11 near large non-real
-  solutions or singular sets at infinity, which smaller steps do not restore).  Paths still failed are tracked
-  again in Study parameters along the same parameter path (``STUDY_RETRACK``, :mod:`.study_retrack`: near-isotropic
-  complex rotations are ordinary points there; kept only as distinct regular roots of the taut system).  If one or two failed
+  solutions or singular sets at infinity, which smaller steps do not restore).  (Without ``STUDY_FIRST``, the
+  taut system tracks every path first and the paths it leaves failed are tracked again in Study parameters along
+  the same parameter path, ``STUDY_RETRACK``, :func:`.study_retrack.retrack_failed_in_study`.)  If one or two failed
   paths remain (at most ``RERUN_MAX_FAILED``), the subproblem is re-run once with a random gamma and another seed,
   and the run with fewer failures is kept; with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), the
-  paths that the Study re-track leaves failed are tracked once more in Study parameters, in compiled double-double
+  paths still failed are tracked once more in Study parameters, in compiled double-double
   arithmetic wherever double precision fails (:func:`.study_retrack._rescue_in_extended_precision`: at most
   ``MP_RETRY_PATHS`` = 4 paths per run, up to ~10 s each, so off by default).  Every path ends with one outcome (``regular``, ``singular``, ``at_infinity``,
   ``failed`` with its reason), counted per subproblem (``outcomes``, ``failures``); a subproblem is
@@ -98,7 +111,7 @@ import numpy as np
 from cdpr_algebra.model.taut_equations import decode, from_cable_frame, to_cable_frame
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .one_cable import one_cable_equilibria
-from .study_retrack import retrack_failed_in_study
+from .study_retrack import retrack_failed_in_study, track_study_first
 from .taut_system import FastTautSystem, fast_family
 from cdpr_algebra.homotopy.results import AT_INFINITY, ENDGAME_FAILED, FAILURES, OUTCOMES, outcome_counts
 from cdpr_algebra.report.jsonable import jsonable
@@ -382,7 +395,8 @@ RERUN_MAX_FAILED = 2  # re-run a subproblem with a new gamma only when at most t
 # update where two do not reach it).  Measured on seed 000 Tests 2 and 3 (tenth session): 1e-4 -> 3e-4 takes
 # Test 3's phase 1 from 533k to 457k steps; 1e-3 (413k) left one more subproblem of Test 2 incomplete.
 PREDICTOR_TOL = 3e-4
-STUDY_RETRACK = True  # failed paths tracked again in Study parameters (dgp.study_retrack)
+STUDY_FIRST = True  # every path tracked in Study parameters first, the taut system only where Study leaves it undecided
+STUDY_RETRACK = True  # without STUDY_FIRST: failed paths tracked again in Study parameters (dgp.study_retrack)
 PROJECTIVE_RETRIES = 1  # rounds of projective re-tracking of suspect paths (step control tightened 10x)
 
 
@@ -413,11 +427,22 @@ def _track(m, target, seed, gamma, options=None):
     # two paths ending on one point are re-tracked with tightened steps (path jumping cannot go unnoticed).
     # The endgame decides finite / at infinity in a projective chart (no norm threshold).
     options = default_options() if options is None else options
-    (res,) = solve_targets(fast_family(m), p_gen, X_gen, [target], seed=seed,
-                           options=replace(options, retry_mpmath=False), gamma=gamma, retries=PROJECTIVE_RETRIES)
-    res = _tension_infinity_undecided(res, m)
-    if STUDY_RETRACK:
-        res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, options)
+
+    def track_taut(rows, detour=True):
+        (res,) = solve_targets(fast_family(m), p_gen, X_gen[rows], [target], seed=seed,
+                               options=replace(options, retry_mpmath=False, detour_retry=options.detour_retry and detour),
+                               gamma=gamma, retries=PROJECTIVE_RETRIES)
+        return _tension_infinity_undecided(res, m)
+
+    if STUDY_FIRST:
+        res = track_study_first(fast_family(m), m, p_gen, X_gen, target, seed, gamma, options,
+                                lambda rows: track_taut(rows, detour=False))
+        if options.retry_mpmath and any(p.status in FAILURES for p in res.track.paths):
+            res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, options)
+    else:
+        res = track_taut(np.arange(len(X_gen)))
+        if STUDY_RETRACK:
+            res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, options)
     return res, sum(1 for p in res.track.paths if p.status in FAILURES)
 
 

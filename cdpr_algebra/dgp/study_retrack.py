@@ -1,6 +1,18 @@
-"""Failed DGP paths tracked again in Study parameters (:mod:`cdpr_algebra.model.study_equations`).
+"""DGP paths tracked in Study parameters (:mod:`cdpr_algebra.model.study_equations`): every path first
+(:func:`track_study_first`, the DGP's default since the nineteenth session), or the failed paths of a run in
+(p, u, v, w, lam) again (:func:`retrack_failed_in_study`, which the first also uses on placeholders of all paths).
 
-The DGP tracks in (p, u, v, w, lam) (:mod:`cdpr_algebra.model.taut_equations`).  Its paths that pass near the isotropic
+:func:`track_study_first` tracks every path in Study parameters, with detours around phase-1 failures (the run
+holds every path, so a detour that reaches a point no other path holds at t = 0.1 is that path's), keeps what the
+rules below keep, and tracks the rest in the taut system (``TAUT_FALLBACK``); a taut endpoint on a point that a
+Study path holds sends that Study path to the taut system too (one of the two jumped), and only a clash that
+remains makes the taut path ``path_jumping``.  Why first: on seed 000 Tests 2 and 3 and seed 002's 8-cable robot
+the paths that (p, u, v, w, lam) loses were re-tracked here anyway, after a long crawl and projective retries
+(Test 2's taut set {1, 2, 5, 6}: 33 of 216 paths, 44,000 of its 79,000 steps in the taut system), and the detours
+of a run of every path settle some that a re-track of the failed paths alone cannot (Test 3: 5 -> 1 failed paths;
+module doc of :mod:`.solve`).
+
+The DGP tracked in (p, u, v, w, lam) (:mod:`cdpr_algebra.model.taut_equations`) first until then.  Its paths that pass near the isotropic
 infinity of the complex rotation group meet condition numbers of 1e10-1e11 there, and double precision loses them
 (``step_too_small``; README "What the failed paths are").  In Euler parameters on a chart, e . c = 1, those rotations
 are ordinary points with small N = e . e.  :func:`retrack_failed_in_study` takes each failed path's start point to
@@ -64,8 +76,10 @@ from cdpr_algebra.model.study_equations import STUDY_CHART_PARAMETERS, from_stud
 
 from .taut_system import LazyFamilySystem
 
-__all__ = ["FastStudySystem", "fast_study_family", "retrack_failed_in_study", "warm_study_kernels", "RESIDUAL_TOL"]
+__all__ = ["FastStudySystem", "fast_study_family", "retrack_failed_in_study", "track_study_first", "warm_study_kernels",
+           "RESIDUAL_TOL", "TAUT_FALLBACK"]
 
+TAUT_FALLBACK = "taut"  # retried kind of a path that the Study run left undecided and the taut system settled
 RESIDUAL_TOL = 1e-8  # residual of the mapped-back endpoint in the taut system after Newton (endgame.refine's measure)
 EXTENDED = True  # Newton residuals in double-double where double precision stalls (TrackerOptions.extended_residual)
 CHART_SEED = 104729  # the chart c of e: drawn from this seed (any generic complex vector serves)
@@ -167,16 +181,18 @@ def study_chart() -> np.ndarray:
     return rng.normal(size=STUDY_CHART_PARAMETERS) + 1j * rng.normal(size=STUDY_CHART_PARAMETERS)
 
 
-def _study_options(options):
+def _study_options(options, detours: bool = False):
     """The DGP's options for the Study run (its step budget and tolerances included): affine endgame (the projective
     one homogenizes quadratic systems only) with no verdicts at infinity (a path that is not settled stays failed),
-    no detours (one route for every path), no retries of any kind (a path failed here stays failed), and Newton
-    residuals in double-double where double precision stalls (``EXTENDED``)."""
+    no retries of any kind (a path failed here stays failed), and Newton residuals in double-double where double
+    precision stalls (``EXTENDED``); detours around phase-1 failures only with ``detours`` (a run of every path:
+    a detour is kept when it reaches a point at t = 0.1 that no other path of the run holds, which proves nothing
+    when the run holds only some of the paths)."""
     from cdpr_algebra.homotopy.endgame import SolveOptions
 
     base = options if options is not None else SolveOptions()
     return replace(base, endgame=replace(base.endgame, projective=False, infinity_verdicts=False),
-                   detour_retry=False, retry_tight=False,
+                   detour_retry=bool(detours and base.detour_retry), retry_tight=False,
                    retry_mpmath=False, check_path_jumping=False,
                    tracker=replace(base.tracker, extended_residual=EXTENDED))
 
@@ -244,11 +260,12 @@ def _rescue_in_extended_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: 
 
 
 def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutions, target, seed: int, gamma: bool,
-                            options=None):
+                            options=None, detours: bool = False):
     """``res`` (the :class:`.homotopy.results.SolveResult` of the taut system ``system`` from ``start_solutions`` at
     ``start_parameters`` to ``target``, run with ``seed`` and ``gamma``) with its failed paths tracked again in Study
     parameters (module doc); rescued paths (regular, or at infinity through N = 0) have ``retried="study"``.  Returns
-    (result, number rescued)."""
+    (result, number rescued).  ``detours``: the Study run makes detours around phase-1 failures (only when ``res``
+    holds every path and all of them failed, as :func:`track_study_first` calls it)."""
     from cdpr_algebra.homotopy.endgame import coincides_with_any, refine
     from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
     from cdpr_algebra.homotopy.solve import group_solutions, solve_parameter_homotopy
@@ -260,7 +277,7 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     chart = study_chart()
     X1 = np.asarray(start_solutions, dtype=complex)[failed]  # path k starts at start solution k
     Y1 = to_study(X1, m, chart)
-    opts = _study_options(options)
+    opts = _study_options(options, detours)
     P1 = np.concatenate([start_parameters, chart])
     P0 = np.concatenate([np.asarray(target, dtype=complex), chart])
     sres = solve_parameter_homotopy(fast_study_family(m), P1, Y1, P0, seed=seed, options=opts, gamma=gamma, retries=0)
@@ -304,3 +321,67 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     track = replace(res.track, paths=tuple(paths))
     sols = group_solutions(track, opts.duplicate_tol, opts.endgame.cluster_tol)
     return replace(res, track=track, solutions=sols), rescued
+
+
+def track_study_first(system, m: int, start_parameters, start_solutions, target, seed: int, gamma: bool, options,
+                      track_taut):
+    """Every path of the parameter homotopy from ``start_solutions`` (taut coordinates) at ``start_parameters`` to
+    ``target`` tracked in Study parameters first, then in the taut ``system`` only where Study leaves it undecided.
+
+    The Study run is :func:`retrack_failed_in_study` applied to all paths (placeholders, none tracked yet): a path
+    ends ``regular`` there when its endpoint, mapped back, is a Newton-quadratic root of the taut system distinct
+    from every other kept endpoint, and ``at_infinity`` when its limit lies on N = 0; it follows the same parameter
+    path (same ``seed`` and ``gamma``) as a taut-system run would.  ``track_taut(indices) -> SolveResult`` tracks the
+    other paths (failed in Study, or singular at a point other than a regular root) in the taut system, with its
+    own retries, from ``start_solutions[indices]``; its outcomes replace theirs (``retried`` = ``TAUT_FALLBACK``
+    unless the taut run retried them itself).  A regular taut endpoint on a point that a Study path holds means a
+    jump of one of the two: that Study path is tracked in the taut system too, and when it ends on a point that no
+    other path holds, the Study run had jumped and it takes its taut outcome; else the taut path is
+    ``path_jumping`` (failed: nothing is merged).  Returns the :class:`.homotopy.results.SolveResult` of all paths
+    (solutions grouped as the engine groups them; the Study paths' ``retried`` is empty: theirs is the first run)."""
+    from cdpr_algebra.homotopy.endgame import coincides_with_any
+    from cdpr_algebra.homotopy.results import PATH_JUMPING, STEP_TOO_SMALL, PathResult, SolveResult, TrackResult
+    from cdpr_algebra.homotopy.solve import group_solutions
+
+    X = np.asarray(start_solutions, dtype=complex)
+    nan = float("nan")
+    todo = tuple(PathResult(i, STEP_TOO_SMALL, X[i], 1.0 + 0j, nan, nan, nan, 0) for i in range(len(X)))
+    blank = SolveResult(solutions=(), track=TrackResult(paths=todo, seconds=0.0, seed=seed))
+    sres, _ = retrack_failed_in_study(system, blank, m, start_parameters, X, target, seed, gamma,
+                                      replace(options, retry_mpmath=False), detours=True)
+    paths = [replace(p, retried="") if p.retried == "study" else p for p in sres.track.paths]
+    rest = [i for i, p in enumerate(paths) if p.status in FAILURES]
+    template = sres
+    tol = options.endgame.cluster_tol
+
+    def taut_outcomes(rows):
+        res = track_taut(rows)
+        return res, {i: replace(q, index=i, retried=q.retried or TAUT_FALLBACK) for i, q in zip(rows, res.track.paths)}
+
+    def holder(x, skip):
+        """The path other than ``skip`` whose regular endpoint is x (within the endgame's cluster tolerance)."""
+        return next((j for j, p in enumerate(paths) if j != skip and p.status == SUCCESS
+                     and coincides_with_any([p.endpoint], x, tol)), None)
+
+    if rest:
+        template, new = taut_outcomes(rest)
+        for i, q in new.items():
+            paths[i] = replace(q, status=STEP_TOO_SMALL) if q.status == SUCCESS else q  # placed below
+        # a taut endpoint on a point that a Study path holds: one of the two jumped.  The Study path is tracked in
+        # the taut system too; when it ends there on a point nobody holds, the Study run had jumped and both
+        # points stand, else the taut path stays failed (path_jumping).
+        clash = {i: holder(q.endpoint, i) for i, q in new.items() if q.status == SUCCESS}
+        partners = sorted({j for j in clash.values() if j is not None})
+        if partners:
+            _, again = taut_outcomes(partners)
+            for j in partners:
+                q = again[j]
+                if q.status == SUCCESS and holder(q.endpoint, j) is None and not any(
+                        coincides_with_any([new[i].endpoint], q.endpoint, tol) for i, h in clash.items() if h == j):
+                    paths[j] = q
+        for i, q in new.items():
+            if q.status == SUCCESS:
+                paths[i] = q if holder(q.endpoint, i) is None else replace(q, status=PATH_JUMPING)
+    track = replace(template.track, paths=tuple(paths), seed=seed)
+    sols = group_solutions(track, options.duplicate_tol, options.endgame.cluster_tol)
+    return replace(template, track=track, solutions=sols)
