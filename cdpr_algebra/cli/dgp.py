@@ -19,9 +19,9 @@ def add_parser(subparsers) -> None:
                      help="cable lengths rho_1 .. rho_n (default: the robot file's)")
     dgp.add_argument("--jobs", type=int, default=None, help="parallel threads (default: all cores)")
     dgp.add_argument("--extended-precision", action="store_true",
-                     help="Newton residuals in double-double wherever double precision stalls (ill-conditioned paths: "
-                          "large complex solutions, near the singular sets at infinity): far fewer failed paths and "
-                          "incomplete subproblems, in about twice the time")
+                     help="Newton residuals in double-double wherever double precision stalls, also for the paths "
+                          "that the Study run (which has them) leaves to the taut system; slower, and on the shipped "
+                          "robots no fewer failed paths since every path is tracked in Study parameters first")
     dgp.add_argument("--mpmath-retry", action="store_true",
                      help="track up to 4 paths per subproblem run that every double-precision retry left failed "
                           "once more, in double-double (compiled, about 30 digits) wherever double precision fails "
@@ -94,9 +94,6 @@ def run(args) -> int:
         return 0
     if not result.complete:
         print_incomplete(result)
-        if any(s.failed_paths for s in result.incomplete) and not args.extended_precision:
-            print("  (--extended-precision follows ill-conditioned paths with Newton residuals in double-double: "
-                  "most failed paths end there, in about twice the time)", file=sys.stderr)
         if any(s.failed_paths for s in result.incomplete) and not args.mpmath_retry:
             print("  (--mpmath-retry tracks up to 4 failed paths per subproblem again, in double-double where double "
                   "precision fails: up to ~10 s a path)", file=sys.stderr)
