@@ -240,9 +240,11 @@ def _krawczyk_operator(Jlo, Jhi, Flo, Fhi, y, r, C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm
 
 
 @nb.njit(**_J)
-def _workspace(h):
-    """The work arrays of :func:`_krawczyk_operator` for h unknowns."""
-    return (np.zeros((h, h)), np.zeros((h, h)), np.zeros((h, h)), np.zeros((h, 1)), np.zeros((h, 1)),
+def _workspace(n, h):
+    """The work arrays of a kernel over an evaluator of n unknowns whose operator has h unknowns: x (n, 4), F (n, 4),
+    J (n, n, 4), J(X) and F(y) as (lo, hi) (h, h) and (h,), then those of :func:`_krawczyk_operator`."""
+    return (np.zeros((n, 4)), np.zeros((n, 4)), np.zeros((n, n, 4)), np.zeros((h, h)), np.zeros((h, h)), np.zeros(h),
+            np.zeros(h), np.zeros((h, h)), np.zeros((h, h)), np.zeros((h, h)), np.zeros((h, 1)), np.zeros((h, 1)),
             np.zeros((h, h)), np.zeros((h, h)), np.zeros((h, h)), np.zeros((h, h)), np.zeros((h, 1)),
             np.zeros((h, 1)), np.zeros((h, 1)), np.zeros((h, 1)), np.zeros((h, 1)), np.zeros((h, 1)))
 
@@ -258,14 +260,8 @@ def krawczyk_kernel(jac, res, Y, R, P, Klo, Khi, ok):
     (:func:`_krawczyk_operator`) on the realified Jacobian [[Re J, -Im J], [Im J, Re J]]."""
     N, h = Y.shape
     n = h // 2
-    x = np.zeros((n, 4))
-    F = np.zeros((n, 4))
-    J = np.zeros((n, n, 4))
-    Jlo = np.zeros((h, h))
-    Jhi = np.zeros((h, h))
-    Flo = np.zeros(h)
-    Fhi = np.zeros(h)
-    C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr, CFlo, CFhi, MDlo, MDhi = _workspace(h)
+    (x, F, J, Jlo, Jhi, Flo, Fhi, C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr, CFlo, CFhi, MDlo,
+     MDhi) = _workspace(n, h)
     for i in range(N):
         p = P[i]
         for k in range(n):

@@ -8,7 +8,6 @@ module with an explicit signature when the module is imported (~4 MiB each).
 from __future__ import annotations
 
 import numba as nb
-import numpy as np
 from numba import types as nbt
 
 from .complex_kernels import EVALUATOR_TYPE, _krawczyk_operator, _workspace
@@ -28,14 +27,8 @@ def real_subsystem_krawczyk_kernel(jac, res, Y, R, P, X0, rows, cols, Klo, Khi, 
     Writes Klo, Khi (N, h) and ok (N,) as :func:`krawczyk_kernel`."""
     N, h = Y.shape
     n = X0.shape[1]
-    x = np.zeros((n, 4))
-    F = np.zeros((n, 4))
-    J = np.zeros((n, n, 4))
-    Jlo = np.zeros((h, h))
-    Jhi = np.zeros((h, h))
-    Flo = np.zeros(h)
-    Fhi = np.zeros(h)
-    C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr, CFlo, CFhi, MDlo, MDhi = _workspace(h)
+    (x, F, J, Jlo, Jhi, Flo, Fhi, C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr, CFlo, CFhi, MDlo,
+     MDhi) = _workspace(n, h)
     for i in range(N):
         p = P[i]
         for k in range(n):
