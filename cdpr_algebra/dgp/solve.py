@@ -216,7 +216,7 @@ class DGPSubproblem:
     uncertified: dict = field(default_factory=dict)  # regular endpoints not certified, per reason
     settled: str | None = None  # how the admissible set was proven complete although the homotopy's account is not
     excluded: int | None = None  # boxes of the interval proof that the set holds no admissible equilibrium (not tracked)
-    retried: dict = field(default_factory=dict)  # paths whose outcome came from a retry, per kind (detour, study, ..)
+    retried: dict = field(default_factory=dict)  # paths whose outcome came from a retry, per kind (taut, detour, ..)
 
     @property
     def admissible_complete(self) -> bool:
