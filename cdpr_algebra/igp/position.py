@@ -62,11 +62,12 @@ from cdpr_algebra.model.errors import CdprInputError
 from cdpr_algebra.generated import dialytic as _gd
 from cdpr_algebra.generated import quartics as _gq
 from cdpr_algebra.model.pose import euler_parameters_from_matrix, matrix_from_euler_parameters
-from cdpr_algebra.certificates.equilibria import with_certificates
+from cdpr_algebra.certificates.equilibria import load_igp_kernels, with_certificates
 from .quartic_forms import quartic_matrix
 from .results import IGPResult, make_solutions
 from cdpr_algebra.model.robot import Robot
 
+load_igp_kernels()  # the certificates' compiled kernels, loaded with the module, not in the first solve's time
 _MONO = np.array(_gq.QUARTIC_MONOMIALS)  # (35, 4) exponents of (e0, e1, e2, e3)
 _NQ = len(_gq.QUARTIC_NAMES)
 _RNG = np.random.default_rng(20130624)  # fixed: results are deterministic
