@@ -205,6 +205,7 @@ def test_study_first_takes_the_taut_outcome_of_what_study_leaves_failed(monkeypa
     # path 3 failed in Study, its taut run ends on its own Study point: kept
     res, calls, study = _fallback_case(monkeypatch, {3}, lambda rows, st: {i: st[i] for i in rows})
     assert calls == [[3]] and res.track.paths[3].status == SUCCESS and res.track.paths[3].retried == TAUT_FALLBACK
+    assert res.track.paths[3].steps > 7  # the fake taut run's 7 steps and the Study run's
     assert outcome_counts(res.track.paths)["regular"] == 24 and len(res.solutions) == 24
     # path 3's taut run ends on path 5's Study point, and path 5 ends there in the taut system too: path jumping
     res, calls, study = _fallback_case(monkeypatch, {3}, lambda rows, st: {i: st[5] for i in rows})

@@ -293,7 +293,7 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
         X0 = from_study(np.array([ends[j] for j in ok]).reshape(-1, 8 + m), m)
     finite = np.all(np.isfinite(X0), axis=1)
     ok, X0 = [j for j, f in zip(ok, finite) if f], X0[finite]
-    rescued = 0
+    rescued, done = 0, set()
     if ok:  # Newton in the taut system (residuals in double-double where the system offers them), as every endpoint
         X, upd, residual, cond, quad = refine(ParameterHomotopy(system, start_parameters, target), X0, 0.0)  # t = 0
     regular = [p.endpoint for p in paths if p.status == SUCCESS]
@@ -310,14 +310,20 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
                            steps=paths[i].steps + spaths[j].steps + extra, winding_number=1, retried=how)
         regular.append(x)
         rescued += 1
+        done.add(j)
     for j, q in enumerate(spaths):  # limits on N = 0: the pose is at infinity (FastStudySystem.infinity_coordinate)
         if q.status == AT_INFINITY:
             i = failed[j]
             paths[i] = replace(paths[i], status=AT_INFINITY, steps=paths[i].steps + q.steps,  # its last point kept
                                winding_number=q.winding_number, order=q.order, retried="study")
             rescued += 1
+            done.add(j)
+    for j, q in enumerate(spaths):  # the others keep their outcome; their steps include the Study run's
+        if j not in done:
+            i = failed[j]
+            paths[i] = replace(paths[i], steps=paths[i].steps + q.steps + (precise[j][1] if j in precise else 0))
     if not rescued:
-        return res, 0
+        return replace(res, track=replace(res.track, paths=tuple(paths))), 0
     track = replace(res.track, paths=tuple(paths))
     sols = group_solutions(track, opts.duplicate_tol, opts.endgame.cluster_tol)
     return replace(res, track=track, solutions=sols), rescued
@@ -356,7 +362,8 @@ def track_study_first(system, m: int, start_parameters, start_solutions, target,
 
     def taut_outcomes(rows):
         res = track_taut(rows)
-        return res, {i: replace(q, index=i, retried=q.retried or TAUT_FALLBACK) for i, q in zip(rows, res.track.paths)}
+        return res, {i: replace(q, index=i, retried=q.retried or TAUT_FALLBACK, steps=q.steps + paths[i].steps)
+                     for i, q in zip(rows, res.track.paths)}  # steps: the Study run's too
 
     def holder(x, skip):
         """The path other than ``skip`` whose regular endpoint is x (within the endgame's cluster tolerance)."""
