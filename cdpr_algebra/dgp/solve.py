@@ -21,7 +21,8 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   37 -> 8 uncertified endpoints, 9.1 -> 11.2 s (a Study step costs ~19 us against ~12 us: its evaluator is cubic);
   Test 2 4 -> 2, 4 -> 2, 134 -> 57, 15.3 -> 13.4 s (its ill-conditioned complex roots with |R| ~ 1e5, which the
   taut system's endgame ended ``singular``, are regular points there); seed 002's 8-cable robot 138 -> 128 failed,
-  24 -> 21 incomplete, 59 -> 54 s (one run each); the same admissible equilibria.  Subproblems whose m has no
+  24 -> 21 incomplete, 59 -> 54 s (one run each); Test 1 (no hard path) 0.17 -> 0.34 s; the same admissible
+  equilibria.  Subproblems whose m has no
   stored set are reported as skipped.  The robot is first normalized
   to the scale of the stored sets: base centred at the centroid c of the exit points, platform frame moved to
   the centroid cb of its points, world frame turned by Rw so that the load acts along -z, lengths divided by the
