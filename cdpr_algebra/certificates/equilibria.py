@@ -748,39 +748,21 @@ def certify_igp_positions(robot, com_position, roots, box_rtol: float = BOX_RTOL
     Y = np.array([np.concatenate([np.asarray(R, float).T.ravel(), np.asarray(t, float) / np.asarray(rho, float)])
                   for R, t, rho in roots]).reshape(N, n - 3)
     F0, J0 = _float_systems(Gf, Y, _parameters(*_robot_data(robot, range(m), float, com_at_origin=True)), rows, cols)
-    C = _inverses(J0)
     S = np.array([_scales(robot, m, cols, L, Y[j]) for j in range(N)]).reshape(N, n - 3)
-    with np.errstate(invalid="ignore", over="ignore"):
-        step = np.einsum("nij,nj->ni", C, F0)
-        rel_step = np.max(np.abs(step) / S, axis=1)
-    y = Y - step
-    todo = np.flatnonzero(np.isfinite(Y).all(axis=1) & np.isfinite(C).all(axis=(1, 2))
-                          & (rel_step <= 0.5 * box_rtol))
-    kernel = _compiled_subsystem_krawczyk(robot, Gf, rows, cols)
-    boxes = certify_real_roots(kernel, y[todo], S[todo], box_rtol)
+    boxes = certify_real_roots(_compiled_subsystem_krawczyk(robot, Gf, rows, cols), Y, S, box_rtol,
+                               inverse=_inverses(J0), residual=F0)
     G = [arb(v) for v in Gf]
     balls = _robot_balls(robot)
     gp = balls[2]
     out, parts, proven = [], [], []
-    at = {j: k for k, j in enumerate(todo.tolist())}
     for j in range(N):
-        k = at.get(j)
-        if k is None or not boxes.proven[k]:
-            if not np.all(np.isfinite(Y[j])):
-                reason = "the root is not finite"
-            elif not np.all(np.isfinite(C[j])):
-                reason = "the Jacobian is singular at the root"
-            elif k is None:
-                reason = (f"the Newton step from the root is {rel_step[j]:.1e} (relative to the unknowns' scale), "
-                          f"more than the box tolerance {box_rtol:.0e}: no solution proven that close to the root")
-            else:
-                reason = boxes.reason[k]
-            kr = KrawczykResult(False, None, None, y[j], 0 if k is None else int(boxes.rounds[k]),
-                                float(rel_step[j]), reason)
-            out.append(_failed("igp_position", robot.n, reason, kr, list(range(m))))
+        center, rounds, step = boxes.center[j], int(boxes.rounds[j]), float(boxes.newton_step[j])
+        if not boxes.proven[j]:
+            kr = KrawczykResult(False, None, None, center, rounds, step, boxes.reason[j])
+            out.append(_failed("igp_position", robot.n, kr.reason, kr, list(range(m))))
             continue
-        X = [arb(lo_).union(arb(hi_)) for lo_, hi_ in zip(boxes.lo[k].tolist(), boxes.hi[k].tolist())]
-        kr = KrawczykResult(True, X, None, y[j], int(boxes.rounds[k]), float(rel_step[j]))
+        X = [arb(lo_).union(arb(hi_)) for lo_, hi_ in zip(boxes.lo[j].tolist(), boxes.hi[j].tolist())]
+        kr = KrawczykResult(True, X, None, center, rounds, step)
         R = [[X[i], X[3 + i], X[6 + i]] for i in range(3)]
         p = [G[i] - (R[i][0] * gp[0] + R[i][1] * gp[1] + R[i][2] * gp[2]) for i in range(3)]
         proven.append(len(out))

@@ -117,6 +117,16 @@ def column(xs) -> arb_mat:
 
 
 # --------------------------------------------------------------------------------------- Krawczyk
+NOT_FINITE = "the root is not finite"
+SINGULAR = "the Jacobian is singular at the root"
+
+
+def newton_step_reason(rel_step: float, max_rel_width: float) -> str:
+    """Why a root whose Newton step is ``rel_step`` (relative to the unknowns' scale) is not certified."""
+    return (f"the Newton step from the root is {rel_step:.1e} (relative to the unknowns' scale), more than the box "
+            f"tolerance {max_rel_width:.0e}: no solution proven that close to the root")
+
+
 @dataclass(frozen=True)
 class KrawczykResult:
     """Outcome of :func:`krawczyk_certify`.
@@ -194,17 +204,17 @@ def krawczyk_certify(F, J, x0, scale, max_rel_width: float = 1e-9, max_iter: int
         return KrawczykResult(False, None, X, center, it, step, reason)
 
     if not np.all(np.isfinite(x0)):
-        return fail("the root is not finite")
+        return fail(NOT_FINITE)
     if inverse is None:
         Jm = np.asarray(J_float(x0), dtype=float) if J_float else mids(J(box(x0)))
         try:
             C = np.linalg.inv(Jm)
         except np.linalg.LinAlgError:
-            return fail("the Jacobian is singular at the root")
+            return fail(SINGULAR)
     else:
         C = np.asarray(inverse, dtype=float)
     if not np.all(np.isfinite(C)):
-        return fail("the Jacobian is singular at the root")
+        return fail(SINGULAR)
     if residual is None:
         residual = F_float(x0) if F_float else mids(F(box(x0)))
     step = C @ np.asarray(residual, dtype=float)
@@ -214,8 +224,7 @@ def krawczyk_certify(F, J, x0, scale, max_rel_width: float = 1e-9, max_iter: int
     if y is not None:
         rel_step = float(np.max(np.abs(y - x0) / s))
     if not rel_step <= 0.5 * max_rel_width:
-        return fail(f"the Newton step from the root is {rel_step:.1e} (relative to the unknowns' scale), more than "
-                    f"the box tolerance {max_rel_width:.0e}: no solution proven that close to the root", 0, rel_step)
+        return fail(newton_step_reason(rel_step, max_rel_width), 0, rel_step)
     if y is None:
         y = x0 - step
     yb = box(y)

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .balls import NOT_FINITE, SINGULAR, newton_step_reason
 from .complex_krawczyk import EPS, START_RTOL, _krawczyk_round
 
 __all__ = ["RealRootBoxes", "certify_real_roots"]
@@ -25,7 +26,8 @@ class RealRootBoxes:
 
     ``proven`` (N,): exactly one zero of F in the box; ``lo``, ``hi`` (N, h): its enclosure X cap K(X) (the widest
     box allowed where not proven); ``rounds`` (N,): the inflation round that proved it (0: not proven);
-    ``reason`` (N,): why a root is not proven ('' when proven).
+    ``reason`` (N,): why a root is not proven ('' when proven); ``center`` (N, h): the roots the boxes are centred
+    on; ``newton_step`` (N,): |C F(x0)| relative to the scale (max over the unknowns; NaN without a Newton step).
     """
 
     proven: np.ndarray
@@ -33,29 +35,49 @@ class RealRootBoxes:
     hi: np.ndarray
     rounds: np.ndarray
     reason: tuple
+    center: np.ndarray
+    newton_step: np.ndarray
 
 
-def certify_real_roots(kernel, Y, scale, max_rel_width: float = 1e-9, max_iter: int = 10) -> RealRootBoxes:
-    """Prove that each refined real root y of ``Y`` (N, h) has exactly one zero of F within a box of half-width
-    <= ``max_rel_width`` / 2 * ``scale`` (N, h or h: the size of each unknown) around it.
+def certify_real_roots(kernel, X0, scale, max_rel_width: float = 1e-9, max_iter: int = 10, inverse=None,
+                       residual=None) -> RealRootBoxes:
+    """Prove that each real root of ``X0`` (N, h) has exactly one zero of F within a box of half-width
+    <= ``max_rel_width`` / 2 * ``scale`` (N, h or h: the size of each unknown) around it, as
+    :func:`.balls.krawczyk_certify` does for one root.
 
     ``kernel(rows, y, r) -> (K Interval (len(rows), h), ok (len(rows),) bool)``: the Krawczyk operator over the
-    boxes y -+ r of the roots ``rows`` of Y (ok False: C could not be formed; K is then unbounded).  The caller
-    refines the roots (Newton) and checks that the refined root is the reported one; a root with a non-finite
-    coordinate is not proven.
+    boxes y -+ r of the roots ``rows`` (ok False: C could not be formed; K is then unbounded).  With ``inverse``
+    (N, h, h: approximate inverses of the Jacobians at the roots, doubles) and ``residual`` (N, h: F there), the
+    boxes are centred on the Newton-refined roots y = x0 - C F(x0), and a root whose Newton step exceeds half the
+    width limit is not proven (the proof would be about another point), nor one whose C is not finite; without
+    them the caller has refined the roots.  A root with a non-finite coordinate is not proven.
     """
-    Y = np.asarray(Y, dtype=float)
-    N, h = Y.shape
+    X0 = np.asarray(X0, dtype=float)
+    N, h = X0.shape
     s = np.broadcast_to(np.asarray(scale, dtype=float), (N, h))
+    reason = ["" for _ in range(N)]
+    finite = np.all(np.isfinite(X0), axis=1) & np.all(np.isfinite(s), axis=1)
+    for k in np.flatnonzero(~finite):
+        reason[k] = NOT_FINITE
+    Y, rel_step = X0, np.full(N, np.nan)
+    if inverse is not None:
+        C = np.asarray(inverse, dtype=float).reshape(N, h, h)
+        with np.errstate(invalid="ignore", over="ignore"):
+            step = np.einsum("nij,nj->ni", C, np.asarray(residual, dtype=float).reshape(N, h))
+            rel_step = np.max(np.abs(step) / s, axis=1)
+        Y = X0 - step
+        regular = np.all(np.isfinite(C), axis=(1, 2))
+        close = rel_step <= 0.5 * max_rel_width
+        for k in np.flatnonzero(finite & ~regular):
+            reason[k] = SINGULAR
+        for k in np.flatnonzero(finite & regular & ~close):
+            reason[k] = newton_step_reason(rel_step[k], max_rel_width)
+        finite &= regular & close
     rmax = 0.5 * max_rel_width * s
     r = 4 * EPS * np.abs(Y) + START_RTOL * s
     proven = np.zeros(N, bool)
     rounds = np.zeros(N, int)
     lo, hi = Y - rmax, Y + rmax
-    reason = ["" for _ in range(N)]
-    finite = np.all(np.isfinite(Y), axis=1) & np.all(np.isfinite(s), axis=1)
-    for k in np.flatnonzero(~finite):
-        reason[k] = "the root is not finite"
     pending = np.flatnonzero(finite)
     for it in range(1, max_iter + 1):
         if not len(pending):
@@ -66,4 +88,4 @@ def certify_real_roots(kernel, Y, scale, max_rel_width: float = 1e-9, max_iter: 
         pending = kept
     for k in pending:
         reason[k] = f"Krawczyk test not satisfied after {max_iter} inflations"
-    return RealRootBoxes(proven, lo, hi, rounds, tuple(reason))
+    return RealRootBoxes(proven, lo, hi, rounds, tuple(reason), Y, rel_step)
