@@ -22,9 +22,9 @@ __all__ = ["real_subsystem_krawczyk_kernel"]
 def real_subsystem_krawczyk_kernel(jac, res, Y, R, P, X0, rows, cols, Klo, Khi, ok):
     """K(X, y) for real boxes X = Y -+ R (N, h) of the square real subsystem F[rows](x) = 0 in the unknowns
     x[cols] of a system with real coefficients whose rewritten complex-interval evaluators are ``jac`` and ``res``
-    (as :func:`krawczyk_kernel`), every other unknown of root i fixed at the real point X0[i] (N, n).  The real
-    parts of the complex enclosures enclose the real function over the real box (the imaginary parts are zero).
-    Writes Klo, Khi (N, h) and ok (N,) as :func:`krawczyk_kernel`."""
+    (as :func:`.complex_kernels.krawczyk_kernel`), every other unknown of root i fixed at the real point X0[i]
+    (N, n).  The real parts of the complex enclosures enclose the real function over the real box (the imaginary
+    parts are zero).  Writes Klo, Khi (N, h) and ok (N,) as :func:`.complex_kernels.krawczyk_kernel` does."""
     N, h = Y.shape
     n = X0.shape[1]
     (x, F, J, Jlo, Jhi, Flo, Fhi, C, Jm, Jr, Fm, Fr, Mlo, Mhi, Mm, Mr, Dm, Dr, CFlo, CFhi, MDlo,
