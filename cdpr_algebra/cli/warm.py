@@ -41,6 +41,7 @@ def warm_kernels(robot) -> dict:
     dgp(robot, jobs=1)
     warm_study_kernels()  # the re-tracking of failed paths, which a robot without them never reaches
     import cdpr_algebra.intervals.real_kernels  # noqa: F401  the IGP's certificates (compiled when imported)
+    import cdpr_algebra.igp.polish_kernel  # noqa: F401  the IGP's Gauss-Newton polish (compiled when imported)
     fam = fast_family(2)  # dF/dp of the taut family (monodromy, trace tests), which the DGP's compiled tracker skips
     fam.evaluate_all(np.ones(fam.n, dtype=complex), np.ones(fam.m, dtype=complex))
     seconds["dgp"] = time.perf_counter() - t0

@@ -26,7 +26,8 @@ Numeric mode (:func:`igp_position`):
    random combinations of the quartics (after a fixed shear, so that solutions sharing e1 separate);
    a root is kept when all 11 quartics are rank deficient there;
 4. every candidate is polished by Gauss-Newton on all 11 quartics (real arithmetic for nearly real
-   candidates, complex otherwise) and kept if the relative residual of the quartics is <= 1e-10;
+   candidates, complex otherwise; compiled, :mod:`.polish_kernel`) and kept if the relative residual of the
+   quartics is <= 1e-10;
 5. e0 = 0 branch (Appendix B), run unless 24 distinct solutions were already found (there are at most 24);
 6. isotropic points (e.e = 0) are dropped, projectively equal points merged;
 7. if S(e3) is singular for every e3 (the 20 x 20 form on Table 4; every square form when G, B1, B2, B3
@@ -63,6 +64,7 @@ from cdpr_algebra.generated import dialytic as _gd
 from cdpr_algebra.generated import quartics as _gq
 from cdpr_algebra.model.pose import euler_parameters_from_matrix, matrix_from_euler_parameters
 from cdpr_algebra.certificates.equilibria import load_igp_kernels, with_certificates
+from .polish_kernel import polish_quartics
 from .quartic_forms import quartic_matrix
 from .results import IGPResult, make_solutions
 from cdpr_algebra.model.robot import Robot
@@ -281,72 +283,22 @@ def _normalized_quartics(data, length):
     return Q / nrm[:, None]
 
 
-# flat indices into the powers pw (K, 4 x 5) of the factors of each quartic monomial; for the derivative in e_v
-# the factor e_v^(a_v - 1) comes first (then the others in order), its coefficient a_v separately
-_MON_IDX = 5 * np.arange(4)[:, None] + _MONO.T  # (4, 35)
-_DER_IDX = np.array([[_MON_IDX[v] - (_MONO[:, v] > 0)] + [_MON_IDX[u] for u in range(4) if u != v]
-                     for v in range(4)])  # (4 derivative, 4 factor, 35)
-_DER_COEF = _MONO.T.astype(float)  # (4, 35)
+_MONO_C = np.ascontiguousarray(_MONO, dtype=np.int64)
 
 
-def _monomials(E, derivatives=True):
-    """Values (K, 35) of the quartic monomials and their derivatives (4, K, 35) (None if not ``derivatives``) at
-    points E (K, 4)."""
-    K = E.shape[0]
-    pw = np.empty((K, 4, 5), dtype=E.dtype)
-    pw[:, :, 0] = 1.0
-    pw[:, :, 1] = E
-    for p in range(2, 5):
-        pw[:, :, p] = pw[:, :, p - 1] * E
-    pw = pw.reshape(K, 20)
-    g = pw[:, _MON_IDX]  # (K, 4, 35)
-    mon = g[:, 0] * g[:, 1] * g[:, 2] * g[:, 3]
-    if not derivatives:
-        return mon, None
-    gd = pw[:, _DER_IDX]  # (K, 4, 4, 35)
-    der = _DER_COEF * gd[:, :, 0] * gd[:, :, 1] * gd[:, :, 2] * gd[:, :, 3]  # (K, 4, 35)
-    return mon, np.swapaxes(der, 0, 1)
+def _polished(Q, E, free, iters=12):
+    """(E polished, relative residuals): :func:`.polish_kernel.polish_quartics` on a copy of the points E (K, 4),
+    the coordinates ``free`` varying (chart fixed); real input in real arithmetic, complex input in complex."""
+    E = np.array(E, dtype=complex if np.iscomplexobj(E) else float, order="C")
+    res = np.empty(E.shape[0])
+    if E.shape[0]:
+        polish_quartics(Q, _MONO_C, E, np.asarray(free, dtype=np.int64), iters, res)
+    return E, res
 
 
 def _residuals(Q, E):
     """Relative residuals max_h |p_h(e)| / (|Q_h| |mon(e)|) at points E (K, 4) (|.| Euclidean norms)."""
-    mon, _ = _monomials(E, derivatives=False)
-    F = mon @ Q.T
-    scale = np.linalg.norm(mon, axis=1)[:, None] * np.linalg.norm(Q, axis=1)[None, :]
-    scale[scale == 0] = 1.0
-    return np.max(np.abs(F) / scale, axis=1)
-
-
-def _polish(Q, E, free, iters=12):
-    """Gauss-Newton on all 11 quartics, the coordinates ``free`` of E (K, 4) varying (chart fixed).
-
-    Real input is polished in real arithmetic, complex input in complex arithmetic.
-    """
-    E = np.array(E, dtype=complex if np.iscomplexobj(E) else float)
-    if E.shape[0] == 0:
-        return E
-    free = list(free)
-    eye = np.eye(len(free))
-    active = np.ones(E.shape[0], dtype=bool)
-    for _ in range(iters):
-        idx = np.nonzero(active)[0]
-        if idx.size == 0:
-            break
-        Ea = E[idx]
-        mon, der = _monomials(Ea)
-        F = mon @ Q.T  # (K, 11)
-        J = np.stack([der[v] @ Q.T for v in free], axis=-1)  # (K, 11, f)
-        JH = np.conj(np.swapaxes(J, 1, 2))
-        N = JH @ J
-        mu = 1e-14 * np.real(np.trace(N, axis1=1, axis2=2)) + 1e-300
-        step = -np.linalg.solve(N + mu[:, None, None] * eye, JH @ F[..., None])[..., 0]
-        step[~np.isfinite(step)] = 0.0
-        Ea[:, free] += step
-        E[idx] = Ea
-        size = np.abs(step).max(axis=1) / np.maximum(1.0, np.abs(Ea).max(axis=1))
-        active[idx[size < 1e-11]] = False  # quadratic convergence: the error left is ~ size^2
-        active[idx[~np.all(np.isfinite(Ea), axis=1)]] = False  # runaway points
-    return E
+    return _polished(Q, E, [], iters=0)[1]
 
 
 def _finalize(Q, E, free):
@@ -357,22 +309,18 @@ def _finalize(Q, E, free):
     mag = np.maximum(1.0, np.abs(E).max(axis=1))
     nearly = np.abs(E.imag).max(axis=1) <= 1e-6 * mag
     out = E.copy()
-    out[nearly] = _polish(Q, E[nearly].real, free)
     res = np.full(E.shape[0], np.inf)
-    res[nearly] = _residuals(Q, out[nearly].real) if nearly.any() else []
+    if nearly.any():
+        out[nearly], res[nearly] = _polished(Q, E[nearly].real, free)
     # complex candidates, and nearly-real ones that did not converge in real arithmetic (a close complex pair)
     redo = ~nearly | ~(res <= _RES_TOL)
     if redo.any():
-        Ec = _polish(Q, E[redo], free)
+        Ec, r = _polished(Q, E[redo], free)
         mag = np.maximum(1.0, np.abs(Ec).max(axis=1))
         now_real = np.all(np.isfinite(Ec), axis=1) & (np.abs(Ec.imag).max(axis=1) <= 1e-7 * mag)
         if now_real.any():
-            Ec[now_real] = _polish(Q, Ec[now_real].real, free, iters=4)
+            Ec[now_real], r[now_real] = _polished(Q, Ec[now_real].real, free, iters=4)
         out[redo] = Ec
-        ok = np.all(np.isfinite(Ec), axis=1)
-        r = np.full(Ec.shape[0], np.inf)
-        if ok.any():
-            r[ok] = _residuals(Q, Ec[ok])
         res[redo] = r
     return out, res
 
