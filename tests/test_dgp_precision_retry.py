@@ -9,6 +9,7 @@ which hands the path to the double-double tracker; the subproblem still reports 
 run, and no failed path.
 """
 
+import importlib
 from dataclasses import replace
 from pathlib import Path
 
@@ -18,8 +19,8 @@ import pytest
 import cdpr_algebra.homotopy.endgame as eg
 import cdpr_algebra.homotopy.dd_tracker as dd
 import cdpr_algebra.homotopy.tracker as tk
-from cdpr_algebra.dgp.solve import _generic, default_options, solve_taut_set
-from cdpr_algebra.dgp.study_retrack import STUDY_EXTENDED
+from cdpr_algebra.dgp.solve import STUDY_FIRST, _generic, default_options, solve_taut_set
+from cdpr_algebra.dgp.study_retrack import STUDY_EXTENDED, FastStudySystem
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from cdpr_algebra.homotopy.results import STEP_TOO_SMALL
 from cdpr_algebra.model.robot import load_robot
@@ -68,10 +69,20 @@ def test_failed_path_is_tracked_in_arbitrary_precision(monkeypatch):
         return out
 
     monkeypatch.setattr(dd, "dd_track", counting_dd)
+    hs = importlib.import_module("cdpr_algebra.homotopy.solve")
+    real_solve = hs.solve_parameter_homotopy
+
+    def counting_solve(system, *a, **k):
+        calls["study_runs"] = calls.get("study_runs", 0) + isinstance(system, FastStudySystem)
+        return real_solve(system, *a, **k)
+
+    monkeypatch.setattr(hs, "solve_parameter_homotopy", counting_solve)
     monkeypatch.setattr(tk, "track_segment", _failing_at_the_start(tk.track_segment, lambda x0: np.ones(len(x0), bool)))
     sub, sols = solve_taut_set(robot, rho, cables, certify=False, options=replace(default_options(), retry_mpmath=True),
                                exclude=False)
     assert calls["dd"] >= 1 and calls["dd_steps"] > 0  # the path went through double-double
+    # one Study run in double precision (every path): the rescue does not run the same homotopy again first
+    assert calls["study_runs"] == (1 if STUDY_FIRST else 2)
     assert sub.retried.get(STUDY_EXTENDED) == 1
     assert sub.failed_paths == 0 and sub.finite == sub0.finite and sub.real == sub0.real
     assert len(sols) == len(sols0)

@@ -439,7 +439,8 @@ def _track(m, target, seed, gamma, options=None):
         res = track_study_first(fast_family(m), m, p_gen, X_gen, target, seed, gamma, options,
                                 lambda rows: track_taut(rows, detour=False))
         if options.retry_mpmath and any(p.status in FAILURES for p in res.track.paths):
-            res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, options)
+            res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, options,
+                                             failed_in_study=True)
     else:
         res = track_taut(np.arange(len(X_gen)))
         if STUDY_RETRACK:

@@ -260,12 +260,15 @@ def _rescue_in_extended_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: 
 
 
 def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutions, target, seed: int, gamma: bool,
-                            options=None, detours: bool = False):
+                            options=None, detours: bool = False, failed_in_study: bool = False):
     """``res`` (the :class:`.homotopy.results.SolveResult` of the taut system ``system`` from ``start_solutions`` at
     ``start_parameters`` to ``target``, run with ``seed`` and ``gamma``) with its failed paths tracked again in Study
     parameters (module doc); rescued paths (regular, or at infinity through N = 0) have ``retried="study"``.  Returns
     (result, number rescued).  ``detours``: the Study run makes detours around phase-1 failures (only when ``res``
-    holds every path and all of them failed, as :func:`track_study_first` calls it)."""
+    holds every path and all of them failed, as :func:`track_study_first` calls it).  ``failed_in_study``: the
+    failed paths of ``res`` were tracked in Study parameters in double precision already (by
+    :func:`track_study_first`), so only the rescue in extended precision of ``retry_mpmath`` runs (the same homotopy
+    in double precision again would fail the same way)."""
     from cdpr_algebra.homotopy.endgame import coincides_with_any, refine
     from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
     from cdpr_algebra.homotopy.solve import group_solutions, solve_parameter_homotopy
@@ -280,8 +283,12 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     opts = _study_options(options, detours)
     P1 = np.concatenate([start_parameters, chart])
     P0 = np.concatenate([np.asarray(target, dtype=complex), chart])
-    sres = solve_parameter_homotopy(fast_study_family(m), P1, Y1, P0, seed=seed, options=opts, gamma=gamma, retries=0)
-    spaths = sres.track.paths
+    if failed_in_study:  # placeholders: every one of them failed (and goes to the rescue below)
+        spaths = tuple(replace(paths[i], index=j, endpoint=y, steps=0) for j, (i, y) in enumerate(zip(failed, Y1)))
+    else:
+        sres = solve_parameter_homotopy(fast_study_family(m), P1, Y1, P0, seed=seed, options=opts, gamma=gamma,
+                                        retries=0)
+        spaths = sres.track.paths
     ok = [j for j, q in enumerate(spaths) if q.status == SUCCESS or _limit_of_one_sheet(q, opts.endgame)]
     ends = {j: spaths[j].endpoint for j in ok}
     precise = {}
