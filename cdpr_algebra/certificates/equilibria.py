@@ -774,11 +774,21 @@ def certify_igp_positions(robot, com_position, roots, box_rtol: float = BOX_RTOL
     return out
 
 
+def _igp_kernels():
+    """The compiled pieces of :func:`certify_igp_positions`: (the Krawczyk kernel, the addresses of the generated
+    interval evaluators of the taut system and of its residual), loaded from numba's cache (or compiled)."""
+    from cdpr_algebra.generated.taut_equations_intervals import taut_equations as ev_iv, taut_residual as res_iv
+    from cdpr_algebra.homotopy.compiled import function_address
+    from cdpr_algebra.intervals.complex_kernels import EVALUATOR_TYPE
+    from cdpr_algebra.intervals.real_kernels import real_subsystem_krawczyk_kernel
+
+    return (real_subsystem_krawczyk_kernel, function_address(ev_iv, EVALUATOR_TYPE),
+            function_address(res_iv, EVALUATOR_TYPE))
+
+
 def load_igp_kernels() -> None:
     """Load (from numba's cache) or compile the kernels of :func:`certify_igp_positions` now (~0.5 s a process)."""
-    import cdpr_algebra.generated.taut_equations_intervals  # noqa: F401
-    import cdpr_algebra.homotopy.compiled  # noqa: F401
-    import cdpr_algebra.intervals.real_kernels  # noqa: F401
+    _igp_kernels()
 
 
 def _compiled_subsystem_krawczyk(robot, G, rows, cols):
@@ -788,13 +798,9 @@ def _compiled_subsystem_krawczyk(robot, G, rows, cols):
     taut system with all m = n cables, the platform frame moved to G (b_i' - g' enclosed, g' = 0), p = G exact,
     Q d enclosed (the length rows, not used, get rho_i^2 = 0).  Returns kernel(part, y, r) -> (K, ok), the same
     operator for every root (``part`` unused)."""
-    from cdpr_algebra.generated.taut_equations_intervals import taut_equations as ev_iv, taut_residual as res_iv
-    from cdpr_algebra.homotopy.compiled import function_address
     from cdpr_algebra.intervals.arithmetic import Interval
-    from cdpr_algebra.intervals.complex_kernels import EVALUATOR_TYPE
-    from cdpr_algebra.intervals.real_kernels import real_subsystem_krawczyk_kernel
 
-    ev, res = function_address(ev_iv, EVALUATOR_TYPE), function_address(res_iv, EVALUATOR_TYPE)
+    real_subsystem_krawczyk_kernel, ev, res = _igp_kernels()
     m = robot.n
     A, b, g, f = _robot_data(robot, range(m), Interval.point, com_at_origin=True)
     params = _parameters(A, b, g, f, None)
