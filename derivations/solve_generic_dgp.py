@@ -86,7 +86,8 @@ def regular_robot(m: int) -> np.ndarray:
 
 def rebase(m: int, seed: int = 1, candidates: int = 4, noise: float = 0.1, verbose: bool = True):
     """Move the stored generic set of ``m`` to the best of ``candidates`` points regular_robot(m) + complex noise."""
-    from cdpr_algebra.homotopy.endgame import SolveOptions, duplicate_groups
+    from cdpr_algebra.homotopy.clusters import duplicate_groups
+    from cdpr_algebra.homotopy.endgame import SolveOptions
     from cdpr_algebra.homotopy.monodromy import load_instance
     from cdpr_algebra.homotopy.solve import solve_parameter_homotopy
 

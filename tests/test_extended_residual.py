@@ -141,7 +141,7 @@ def test_extended_residual_follows_paths_double_precision_cannot():
     hom = ParameterHomotopy(fam, p1, p0)
     opts = replace(default_options(), endgame=EndgameOptions(projective=True))
     o = replace(opts.tracker, extended_residual=False)
-    x, st, _, _, _ = _track_to_endgame(hom, X, np.arange(len(X)), replace(opts, tracker=o), 0.1, o)
+    x, st, _, _, _, _ = _track_to_endgame(hom, X, np.arange(len(X)), replace(opts, tracker=o), 0.1, o)
     ok = np.flatnonzero(st == "success")
     a = track_segment(hom, x[ok], 0.1, 0.025, o)
     b = track_segment(hom, x[ok], 0.1, 0.025, replace(o, extended_residual=True))

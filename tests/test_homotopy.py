@@ -183,7 +183,7 @@ def test_failed_paths_are_retried():
     tr = TrackerOptions(max_steps=6)
     opts = SolveOptions(tracker=tr, retry_mpmath=False)
     idx = np.arange(len(st.solutions))
-    x, status, steps, retried, h = _track_to_endgame(H, st.solutions, idx, opts, 0.1, dc_replace(tr, max_steps=6))
+    x, status, steps, retried, h, _ = _track_to_endgame(H, st.solutions, idx, opts, 0.1, dc_replace(tr, max_steps=6))
     assert (retried == "tight").any()
     # the last step length is handed on to phase 2 only for paths tracked in one go
     assert np.all(np.isnan(h[retried == "tight"])) and np.all(h[retried == ""] > 0)
@@ -421,7 +421,7 @@ def test_duplicate_groups_match_the_pairwise_definition():
     """duplicate_groups (sorted windows, vectorized in chunks) gives the groups linked by the pairwise test on every
     pair (each coordinate within tol (1 + the larger modulus)), on clustered random points with huge coordinates,
     non-finite rows and chunks smaller than the candidate count."""
-    from cdpr_algebra.homotopy import endgame as EG
+    from cdpr_algebra.homotopy import clusters as EG
     from cdpr_algebra.homotopy.clusters import linked_groups
 
     rng = np.random.default_rng(11)

@@ -30,7 +30,7 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   p = c + L Rw^T p^ - R cb, lam = Q lam^ / L, tau_i = lam_i rho_i.
   Tracking uses the compiled tracker (:mod:`.homotopy.compiled` with the numba evaluators and structured linear
   solve of :mod:`cdpr_algebra.dgp.kernels`; numpy evaluators :class:`FastTautSystem` for the endgame checks and retries;
-  predictor tolerance 3e-4; endpoints refined with Newton residuals in double-double, :func:`.homotopy.endgame.refine`;
+  predictor tolerance 3e-4; endpoints refined with Newton residuals in double-double, :func:`.homotopy.refinement.refine`;
   with ``default_options(extended=True)`` (``cdpr dgp --extended-precision``) a path whose Newton corrections stall
   in double precision although its predictor was good takes its Newton residuals in double-double from then on,
   :mod:`.homotopy.double_double`: near large complex solutions and the singular sets at infinity the condition

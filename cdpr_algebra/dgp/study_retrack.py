@@ -21,7 +21,7 @@ homotopy is drawn from the same seed), so it follows the same solution curve in 
 path's own endpoint.  A path whose new run ends regular, or ``singular`` by its condition number alone (a limit
 on one sheet at a pose, :func:`_limit_of_one_sheet`), is kept when its endpoint, mapped back, converges under
 Newton's method in the taut system to ``RESIDUAL_TOL`` and is distinct from every other path's regular endpoint
-(``endgame.coincides_with_any`` at the endgame's cluster tolerance, the detour retry's test; a coincidence means a jump
+(``clusters.coincides_with_any`` at the endgame's cluster tolerance, the detour retry's test; a coincidence means a jump
 of one of them: the path stays failed, nothing is merged); a path whose new run ends on the quadric N = 0 is at
 infinity (below); every other path keeps its outcome.  A kept endpoint is then certified like any other (the DGP's
 endpoint certificates, in the taut system).
@@ -80,7 +80,7 @@ __all__ = ["FastStudySystem", "fast_study_family", "retrack_failed_in_study", "t
            "RESIDUAL_TOL", "TAUT_FALLBACK"]
 
 TAUT_FALLBACK = "taut"  # retried kind of a path that the Study run left undecided and the taut system settled
-RESIDUAL_TOL = 1e-8  # residual of the mapped-back endpoint in the taut system after Newton (endgame.refine's measure)
+RESIDUAL_TOL = 1e-8  # residual of the mapped-back endpoint in the taut system after Newton (refinement.refine's measure)
 EXTENDED = True  # Newton residuals in double-double where double precision stalls (TrackerOptions.extended_residual)
 CHART_SEED = 104729  # the chart c of e: drawn from this seed (any generic complex vector serves)
 
@@ -230,7 +230,7 @@ def _rescue_in_extended_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: 
     quadratically with a condition number at most the endgame's ``singular_condition``."""
     from cdpr_algebra.generated.study_equations_dd import study_equations
     from cdpr_algebra.homotopy.dd_tracker import DoubleDoubleParameterHomotopy
-    from cdpr_algebra.homotopy.endgame import refine
+    from cdpr_algebra.homotopy.refinement import refine
     from cdpr_algebra.homotopy.hybrid_tracker import hybrid_track
     from cdpr_algebra.homotopy.start_systems import parameter_homotopy
 
@@ -269,7 +269,8 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     failed paths of ``res`` were tracked in Study parameters in double precision already (by
     :func:`track_study_first`), so only the rescue in extended precision of ``retry_mpmath`` runs (the same homotopy
     in double precision again would fail the same way)."""
-    from cdpr_algebra.homotopy.endgame import coincides_with_any, refine
+    from cdpr_algebra.homotopy.clusters import coincides_with_any
+    from cdpr_algebra.homotopy.refinement import refine
     from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
     from cdpr_algebra.homotopy.solve import group_solutions, solve_parameter_homotopy
 
@@ -352,7 +353,7 @@ def track_study_first(system, m: int, start_parameters, start_solutions, target,
     other path holds, the Study run had jumped and it takes its taut outcome; else the taut path is
     ``path_jumping`` (failed: nothing is merged).  Returns the :class:`.homotopy.results.SolveResult` of all paths
     (solutions grouped as the engine groups them; the Study paths' ``retried`` is empty: theirs is the first run)."""
-    from cdpr_algebra.homotopy.endgame import coincides_with_any
+    from cdpr_algebra.homotopy.clusters import coincides_with_any
     from cdpr_algebra.homotopy.results import PATH_JUMPING, STEP_TOO_SMALL, PathResult, SolveResult, TrackResult
     from cdpr_algebra.homotopy.solve import group_solutions
 

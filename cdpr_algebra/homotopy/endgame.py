@@ -4,8 +4,8 @@ Pipeline (:func:`run_pipeline`, used by :func:`track_paths`), all vectorized acr
 
 1. track t = 1 -> ``endgame_start`` (0.1). Paths that fail are retried with tighter double-precision
    settings, then (``detour_retry``) around the point where they failed on a half circle in the complex t-plane,
-   kept only on a regular solution at t = te that no other path holds (:func:`_detour_retry`), then by a scalar
-   mpmath tracker (``mp_dps`` digits) before being reported failed.
+   kept only on a regular solution at t = te that no other path holds (:func:`.detours.phase1_detours`), then by
+   a scalar mpmath tracker (``mp_dps`` digits) before being reported failed.
 2. fast finish: track t = 0.1 -> 0 and refine by Newton on H(x, 0); an endpoint is ``success`` when
    Newton converges quadratically to full double precision (last update <= ``refine_tol`` (1 + |x|))
    and cond(dF/dx) <= ``singular_condition``.
@@ -40,10 +40,12 @@ from dataclasses import dataclass, field, asdict, replace
 
 import numpy as np
 
-from .clusters import linked_groups
+from .clusters import duplicate_groups
+from .detours import phase1_detours
+from .refinement import refine, relative_residual
 from .results import (AT_INFINITY, DIVERGED, ENDGAME_FAILED, FAILURES, SINGULAR, STEP_TOO_SMALL, SUCCESS,
                       TOO_MANY_STEPS, PathResult, TrackResult)
-from .tracker import TrackerOptions, _norm, _solve, track_segment
+from .tracker import TrackerOptions, _norm, track_segment
 
 __all__ = ["EndgameOptions", "SolveOptions", "run_pipeline", "refine", "cauchy_endgame", "decide_in_chart", "mp_track",
            "mp_path", "track_paths"]
@@ -140,12 +142,12 @@ class SolveOptions:
     * ``check_path_jumping`` [True]: re-track paths whose nonsingular endpoints coincide;
     * ``duplicate_tol`` [1e-8]: relative distance under which two endpoints coincide;
     * ``detour_retry`` [False]: track a path that failed in phase 1 (at t_f in (te, 1)) again around t_f on a
-      half circle in the complex t-plane (radius at most ``DETOUR_RADII``, above, then below, the smaller first),
+      half circle in the complex t-plane (radius at most ``detours.DETOUR_RADII``, above, then below, the smaller first),
       and keep the point it reaches at t = te only when Newton converges there quadratically and it is distinct
-      from the points every other path reached (:func:`_detour_retry`).  Only for a call given every start
-      solution of a homotopy whose system at t = te is generic (a parameter homotopy from a generic instance):
-      it has exactly as many regular solutions as paths, so once every path holds a distinct regular one there,
-      they are all of them, whichever path holds which (a detour may swap two paths' solutions).
+      from the points every other path reached (:func:`.detours.phase1_detours`).  Only for a call given every
+      start solution of a homotopy whose system at t = te is generic (a parameter homotopy from a generic
+      instance): it has exactly as many regular solutions as paths, so once every path holds a distinct regular one
+      there, they are all of them, whichever path holds which (a detour may swap two paths' solutions).
     """
 
     tracker: TrackerOptions = field(default_factory=TrackerOptions)
@@ -168,65 +170,6 @@ class SolveOptions:
 # ---------------------------------------------------------------------------------------------
 # refinement
 # ---------------------------------------------------------------------------------------------
-def refine(homotopy, x, t=0.0, max_iter: int = 8, tol: float = 1e-13, extended: bool = True):
-    """Newton on H(x, t) = 0 for every point. Returns (x, last_update, residual, condition, quadratic).
-
-    ``condition`` is the 2-norm condition number of dF/dx with columns scaled by max(1, |x_j|) and rows
-    normalized (invariant to the scale of each equation and of large coordinates).
-
-    ``quadratic`` is True where Newton reached max(``tol``, 1e-15 cond) (1 + |x|): full double precision
-    for that condition number, which on a singular point (linear convergence) does not happen
-    within ``max_iter`` iterations.
-
-    With ``extended`` and a homotopy that offers a double-double residual (:func:`.compiled.residual_dd`), the
-    residuals are evaluated in double-double (the Jacobians and updates stay in double): Newton then converges to
-    full double precision on points whose condition number is up to ~1 / eps, not ~1 / (eps tol).
-    """
-    x = np.array(x, dtype=complex, copy=True)
-    N = len(x)
-    tt = np.full(N, t, dtype=complex)
-    residual = None
-    if extended and getattr(homotopy, "compiled_residual_dd", None) is not None:
-        from .compiled import residual_dd
-
-        residual = residual_dd(homotopy)
-    upd = np.full(N, np.inf)
-    active = np.arange(N)
-    prev = np.full(N, np.inf)
-    for _ in range(max_iter):
-        if not active.size:
-            break
-        H, Hx = homotopy.evaluate_and_jacobian(x[active], tt[active])
-        if residual is not None:
-            H = residual(x[active], tt[active])
-        d = _solve(Hx, -H)
-        e = _norm(d) / (1 + _norm(x[active]))
-        good = np.isfinite(e)
-        # take the step unless Newton is diverging (update grew by > 2 from a small value)
-        take = good & ~((e > 2 * prev[active]) & (prev[active] < 1e-8))
-        x[active[take]] += d[take]
-        upd[active] = np.where(take, e, upd[active])
-        prev[active] = np.where(take, e, prev[active])
-        active = active[take & (e > tol)]
-    H, Hx = homotopy.evaluate_and_jacobian(x, tt)
-    if residual is not None:
-        H = residual(x, tt)
-    res = _relative_residual(H, x)
-    with np.errstate(all="ignore"):
-        try:
-            # scaled condition number: columns by max(1, |x_j|), rows to unit norm, so a regular solution
-            # with large coordinates (far from the origin, not at infinity) is not mistaken for a singular one
-            Hs = Hx * np.maximum(1.0, np.abs(x))[:, None, :]
-            Hs = Hs / np.maximum(np.linalg.norm(Hs, axis=2, keepdims=True), 1e-300)
-            cond = np.linalg.cond(Hs)
-        except np.linalg.LinAlgError:
-            cond = np.full(N, np.inf)
-    cond = np.where(np.isfinite(cond), cond, np.inf)
-    # full precision: the last update is at the round-off floor of a problem with that condition
-    floor = np.maximum(tol, 1e-15 * cond)
-    return x, upd, res, cond, upd <= floor
-
-
 # ---------------------------------------------------------------------------------------------
 # Cauchy endgame
 # ---------------------------------------------------------------------------------------------
@@ -282,12 +225,6 @@ def _cauchy_loops(homotopy, x, r, o: EndgameOptions, tr: TrackerOptions):
 
 
 DECENT_ACCURACY = 1e-5  # a Cauchy estimate at least this accurate (relative) still decides a path out of samples
-
-
-def _relative_residual(H, X) -> np.ndarray:
-    """max |H| / (1 + max |x|) per row: the residual of points X (rows) with values H, relative to their size, as
-    every endpoint reports it."""
-    return np.max(np.abs(H), axis=1) / (1 + np.max(np.abs(X), axis=1))
 
 
 def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions, chart: bool = False) -> EndgameResult:
@@ -357,7 +294,7 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
             # a finite limit must solve H(x, 0) = 0; a stable mean with a large residual is the constant
             # term of a Puiseux series with negative exponents: the path diverges
             Hc = homotopy.evaluate(est[conv], np.zeros(int(conv.sum()), dtype=complex))
-            resid = _relative_residual(Hc, est[conv])
+            resid = relative_residual(Hc, est[conv])
             ci = np.flatnonzero(conv)
             diverging = ci[~(resid <= o.finite_residual)]
             conv[diverging] = False
@@ -388,7 +325,7 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
     if decent.size:
         with np.errstate(all="ignore"):
             Hd = homotopy.evaluate(xend[decent], np.zeros(decent.size, dtype=complex))
-            resid = _relative_residual(Hd, xend[decent])
+            resid = relative_residual(Hd, xend[decent])
         solves = resid <= o.finite_residual
     status[decent[solves]] = SINGULAR
     for i in set(active.tolist()) - set(decent[solves].tolist()):
@@ -499,8 +436,8 @@ def mp_track(homotopy, x0, t_a, t_b, dps: int = 30, options: TrackerOptions | No
 # the pipeline
 # ---------------------------------------------------------------------------------------------
 def _track_to_endgame(homotopy, X0, idx, opts: SolveOptions, te, tr: TrackerOptions):
-    """Phase 1 for the paths ``idx``: t = 1 -> te, with retries. Returns (x, status, steps, retried, h) with h the
-    last step length in t (absolute; NaN for retried paths)."""
+    """Phase 1 for the paths ``idx``: t = 1 -> te, with retries. Returns (x, status, steps, retried, h, t_fail) with h
+    the last step length in t (absolute; NaN for retried paths) and t_fail the t where a failed path stopped."""
     seg = track_segment(homotopy, X0[idx], 1.0, te, tr)
     x, status, steps = seg.x, seg.status.copy(), seg.steps.copy()
     t_fail = seg.t.copy()
@@ -516,7 +453,7 @@ def _track_to_endgame(homotopy, X0, idx, opts: SolveOptions, te, tr: TrackerOpti
         h[bad] = np.nan
         bad = bad[seg2.status != SUCCESS]
     if bad.size and opts.detour_retry and len(idx) == len(X0):
-        _detour_retry(homotopy, X0[idx], x, status, steps, retried, h, t_fail, te, tr, opts)
+        phase1_detours(homotopy, X0[idx], x, status, steps, retried, h, t_fail, te, tr, opts)
         bad = bad[status[bad] != SUCCESS]
     if bad.size and opts.retry_mpmath and hasattr(homotopy, "mp_evaluate_all"):
         for i in bad[: opts.max_mpmath_paths]:
@@ -526,74 +463,7 @@ def _track_to_endgame(homotopy, X0, idx, opts: SolveOptions, te, tr: TrackerOpti
             if st == SUCCESS:
                 x[i], status[i] = xm, SUCCESS
                 h[i] = np.nan
-    return x, status, steps, retried, h
-
-
-DETOUR_RADII = (0.05, 0.15)  # radii (in t) of the half circles of :func:`_detour_retry`, the smaller first
-DETOUR_CHORDS = 6  # chords of that half circle
-
-
-def _detour_retry(homotopy, X0, x, status, steps, retried, h, t_fail, te, tr: TrackerOptions, opts: SolveOptions):
-    """Paths that failed in phase 1 at t_f in (te, 1) (``t_fail``), tracked again from X0 with the same step
-    control along 1 -> t_f + d, a half circle about t_f of radius d = min(r, 1 - t_f, t_f - te) (``DETOUR_CHORDS``
-    chords), and t_f - d -> te: r = 0.05 above the real axis, then below, then r = 0.15 above and below for those
-    still failed (``DETOUR_RADII``; the larger circle, tried on seed 000 Tests 2 and 3 and seed 002's 8-cable
-    robot, rescued 4, 5 and 23 more paths in the same time).  The approach along the real axis is tracked once, to
-    t_f + 0.15 and on to t_f + 0.05, for every circle.  A point reached at te is kept (``retried = "detour"``, the
-    arrays updated in place) only when Newton's method converges there quadratically with a moderate condition
-    number and it is distinct (each coordinate at its own scale, ``endgame.cluster_tol``) from every other path's
-    point at te and from the points kept before it: the system at te is generic (see ``SolveOptions.detour_retry``),
-    so a kept point is a solution no other path holds.  A circle that encloses a branch point of the path brings it
-    back on another path's solution: that point is refused, and the next circle is tried; a path that no circle
-    brings to a point of its own stays failed."""
-    eo = opts.endgame
-    bad = np.array([i for i in np.flatnonzero(status != SUCCESS) if te < t_fail[i].real < 1.0], dtype=int)
-    if not bad.size:
-        return
-    tf = t_fail[bad].real
-    # the approach along the real axis, tracked once: 1 -> t_f + d for the largest radius, then on to the smaller
-    starts = {}
-    xa, ta, ok = X0[bad].copy(), np.ones(len(bad), dtype=complex), np.ones(len(bad), dtype=bool)
-    for radius in sorted(DETOUR_RADII, reverse=True):
-        d = np.minimum(np.minimum(radius, 1.0 - tf), tf - te)
-        tb = (tf + d).astype(complex)
-        a = np.flatnonzero(ok & (ta != tb))
-        if a.size:
-            seg = track_segment(homotopy, xa[a], ta[a], tb[a], tr)
-            xa[a] = seg.x
-            steps[bad[a]] += seg.steps
-            ok[a] &= seg.status == SUCCESS
-            ta[a] = tb[a]
-        starts[radius] = (xa.copy(), d, ok & (d > 1e-3))
-    for radius, side in [(r, s) for r in DETOUR_RADII for s in (1.0, -1.0)]:
-        xs, d, ok_r = starts[radius]
-        sel = np.flatnonzero(ok_r & (status[bad] != SUCCESS))
-        if not sel.size:
-            continue
-        todo, tfs, ds = bad[sel], tf[sel], d[sel]
-        knots = [tfs + ds * np.exp(1j * side * np.pi * k / DETOUR_CHORDS) for k in range(DETOUR_CHORDS + 1)]
-        knots.append(np.full(len(todo), te, dtype=complex))
-        xc = xs[sel].copy()
-        live = np.ones(len(todo), dtype=bool)
-        for t0, t1 in zip(knots[:-1], knots[1:]):
-            a = np.flatnonzero(live & (t0 != t1))
-            if not a.size:
-                continue
-            seg = track_segment(homotopy, xc[a], t0[a], t1[a], tr)
-            xc[a] = seg.x
-            steps[todo[a]] += seg.steps
-            live[a] &= seg.status == SUCCESS
-        a = np.flatnonzero(live)
-        if not a.size:
-            continue
-        xr, _, _, cond, quad = refine(homotopy, xc[a], te, tol=eo.refine_tol)
-        for j, k in enumerate(a):
-            if not (quad[j] and cond[j] <= eo.singular_condition):
-                continue
-            if coincides_with_any(x[status == SUCCESS], xr[j], eo.cluster_tol):
-                continue  # another path's solution: not this path's
-            i = todo[k]
-            x[i], status[i], retried[i], h[i] = xr[j], SUCCESS, "detour", np.nan
+    return x, status, steps, retried, h, t_fail
 
 
 def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
@@ -714,7 +584,7 @@ def _unsolved_in_affine(homotopy, X, status, eo: EndgameOptions) -> np.ndarray:
         return bad
     with np.errstate(all="ignore"):
         H = homotopy.evaluate(X[idx], np.zeros(idx.size, dtype=complex))
-        res = _relative_residual(H, X[idx])
+        res = relative_residual(H, X[idx])
     bad[idx] = ~(res <= eo.finite_residual)
     return bad
 
@@ -743,7 +613,7 @@ def _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order=No
     if ok.size:
         H, Hx = homotopy.evaluate_and_jacobian(x[ok], np.zeros(ok.size, dtype=complex))
         with np.errstate(all="ignore"):
-            res[ok] = _relative_residual(H, x[ok])
+            res[ok] = relative_residual(H, x[ok])
             try:
                 cond[ok] = np.linalg.cond(Hx)
             except np.linalg.LinAlgError:
@@ -762,7 +632,7 @@ def _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order=No
 
 def _run(homotopy, X0, idx, opts: SolveOptions, tr: TrackerOptions):
     te = opts.endgame.endgame_start
-    x, st1, steps, retried, h = _track_to_endgame(homotopy, X0, idx, opts, te, tr)
+    x, st1, steps, retried, h, t_fail = _track_to_endgame(homotopy, X0, idx, opts, te, tr)
     n = len(idx)
     status = st1.copy()
     wind = np.ones(n, dtype=int)
@@ -775,55 +645,6 @@ def _run(homotopy, X0, idx, opts: SolveOptions, tr: TrackerOptions):
         x[ok], status[ok], wind[ok], acc[ok], tfin[ok], order[ok] = xo, so, wo, ao, to, oo
         steps[ok] += sto
     return _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order)
-
-
-def _agree(a, b, tol: float):
-    """Rows of a and b (broadcast) agree in every coordinate to tol (1 + the larger modulus of that coordinate): the
-    test of :func:`duplicate_groups` and :func:`coincides_with_any`."""
-    return np.all(np.abs(a - b) <= tol * (1 + np.maximum(np.abs(a), np.abs(b))), axis=-1)
-
-
-def coincides_with_any(points, x, tol: float) -> bool:
-    """x agrees with some row of ``points`` (:func:`_agree`): the test of :func:`duplicate_groups`, for one point
-    against many."""
-    points = np.asarray(points)
-    if not len(points):
-        return False
-    return bool(np.any(_agree(points, x, tol)))
-
-
-DUPLICATE_CHUNK = 1 << 16  # candidate pairs tested at once by duplicate_groups
-
-
-def duplicate_groups(points: np.ndarray, tol: float) -> list:
-    """Groups (lists of row indices, size >= 2) of points that agree in every coordinate to tol (1 + |that
-    coordinate|): each coordinate at its own scale, so that points with one huge coordinate and another that
-    differs (x ~ 1e9, y = +-1) are not taken for one."""
-    if len(points) < 2:
-        return []
-
-    order = np.argsort(points[:, 0].real)
-    key = points[order, 0].real
-    span = tol * (1 + np.max(np.abs(points[np.isfinite(points)]), initial=0.0))
-    # candidate pairs (a, b), a < b in sorted order, whose first real parts are within span (a window per a), then
-    # the test of every coordinate, vectorized over chunks of candidates
-    N = len(order)
-    hi = np.searchsorted(key, key + span, side="right")
-    counts = np.maximum(hi - np.arange(N) - 1, 0)
-    pi, pj = [], []
-    start = 0
-    while start < N:  # chunks of about DUPLICATE_CHUNK candidate pairs: memory stays O(DUPLICATE_CHUNK n)
-        stop = min(N, start + 1 + int(np.searchsorted(np.cumsum(counts[start:]), DUPLICATE_CHUNK)))
-        c = counts[start:stop]
-        a = np.repeat(np.arange(start, stop), c)
-        b = a + 1 + (np.arange(len(a)) - np.repeat(np.cumsum(c) - c, c))
-        i, j = order[a], order[b]
-        same = _agree(points[i], points[j], tol)
-        pi.append(i[same])
-        pj.append(j[same])
-        start = stop
-    i, j = np.concatenate(pi).astype(np.int64), np.concatenate(pj).astype(np.int64)
-    return [g for g in linked_groups(len(points), i, j) if len(g) > 1]
 
 
 def mp_path(homotopy, x0, index, opts: SolveOptions, tr: TrackerOptions, steps: int = 0):

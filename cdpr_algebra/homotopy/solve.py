@@ -19,7 +19,9 @@ from dataclasses import replace
 
 import numpy as np
 
-from .endgame import SolveOptions, coincides_with_any, duplicate_groups, mp_path, mp_track, refine
+from .clusters import coincides_with_any, duplicate_groups
+from .endgame import SolveOptions, mp_path, mp_track
+from .refinement import refine
 from .projective import from_chart, to_chart
 from .results import (ENDGAME_FAILED, FAILURES, PATH_JUMPING, SINGULAR, STEP_TOO_SMALL, SUCCESS, Solution,
                       SolveResult, TrackResult)

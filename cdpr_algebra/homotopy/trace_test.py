@@ -58,7 +58,8 @@ from dataclasses import asdict, dataclass, field, replace
 import numpy as np
 
 from .clusters import linked_groups
-from .endgame import SolveOptions, duplicate_groups
+from .clusters import duplicate_groups
+from .endgame import SolveOptions
 from .homotopies import ParameterHomotopy
 from .monodromy import MonodromyOptions, monodromy_solve
 from .results import STATUSES, SUCCESS
@@ -225,7 +226,7 @@ def _close_groups(system, parameters, X, floor, digits_lost, polish_condition):
     """The points X refined (Newton; points of cond > ``polish_condition`` in arbitrary precision where the system
     allows it) and grouped by the conditioning-aware duplicate test of :func:`distinct_points`.  Returns
     (refined points, condition numbers, groups (lists of row indices), number polished, residuals)."""
-    from .endgame import refine
+    from .refinement import refine
 
     p = np.asarray(parameters, dtype=complex)
     Xr, _, res, cond, _ = refine(ParameterHomotopy(system, p, p), X, 0.0)
@@ -251,7 +252,7 @@ def _close_groups(system, parameters, X, floor, digits_lost, polish_condition):
 def distinct_points(system, parameters, X, floor: float = 1e-8, digits_lost: float = 100.0,
                     polish_condition: float | None = 1e6):
     """Distinct solutions among points X of ``system`` at ``parameters``, with a duplicate test that accounts for
-    conditioning: after Newton refinement (:func:`.endgame.refine`), two points are one solution when they are
+    conditioning: after Newton refinement (:func:`.refinement.refine`), two points are one solution when they are
     closer (max-norm, relative to 1 + |x|) than max(floor, digits_lost * 2.2e-16 * cond), cond being the scaled
     condition number of dF/dx at either point (the accuracy double precision allows there).  (A fixed relative
     tolerance such as monodromy's 1e-8 counts an ill-conditioned solution, cond ~ 1e10, found again around each
@@ -531,7 +532,7 @@ def polish(system, parameters, Y, threshold: float = 1e6, dps: int = 40, iterati
     double: their error drops from ~ cond * 1e-16 to the rounding of their coordinates.  The trace is a sum of
     hundreds of points, and one point of condition 1e9 would otherwise put ~1e-7 of noise into it.  Returns
     (Y, number of points refined, largest condition number)."""
-    from .endgame import refine
+    from .refinement import refine
 
     Y = np.array(Y, dtype=complex, copy=True).reshape(-1, system.n)
     if not len(Y):
