@@ -137,6 +137,68 @@ def test_detour_is_refused_where_it_would_duplicate_a_path():
     assert outcome_counts(res.paths)["failed"] == 2
 
 
+def _failing_in_the_endgame_zone(monkeypatch, rows, t_fail=0.05):
+    """The fast finish (the track t = te -> 0 of :func:`cdpr_algebra.homotopy.endgame._finish`) of the paths in
+    ``rows`` (of that call) stops with ``too_many_steps`` at t_fail; every other track is the real one (the
+    detours' too: :mod:`cdpr_algebra.homotopy.detours` has its own binding)."""
+    import cdpr_algebra.homotopy.endgame as eg
+
+    real = eg.track_segment
+    te = EndgameOptions().endgame_start
+
+    def failing(homotopy, x0, t_a, t_b, options=None, h0=None):
+        r = real(homotopy, x0, t_a, t_b, options, h0)
+        if np.all(np.asarray(t_a) == te) and np.all(np.asarray(t_b) == 0.0):
+            status, t = r.status.copy(), np.array(r.t, dtype=complex, copy=True)
+            status[rows], t[rows] = "too_many_steps", t_fail
+            r = replace(r, status=status, t=t)
+        return r
+
+    monkeypatch.setattr(eg, "track_segment", failing)
+
+
+def test_endgame_detour_rescues_a_failure_in_the_endgame_zone(monkeypatch):
+    """Two paths stop at t = 0.05 in the fast finish (forced): they fail there with that reason and t, without a
+    second try by the Cauchy endgame over the same stretch (affine homotopy); with ``detour_retry`` they are tracked
+    again from t = 1 around t = 0.05 to t = 0 and kept on regular roots that no other path holds: the closed-form
+    roots at a0."""
+    from cdpr_algebra.homotopy.endgame import track_paths
+    from cdpr_algebra.homotopy.start_systems import parameter_homotopy
+
+    p0 = np.array([0.3 - 0.2j, 1.0])
+    (hom,) = parameter_homotopy(_family(), P1, p0, rng=np.random.default_rng(0))
+    _failing_in_the_endgame_zone(monkeypatch, [0, 1])
+    plain = SolveOptions(retry_tight=False, retry_mpmath=False)
+    off = track_paths(hom, _start(P1), plain)
+    assert outcome_counts(off.paths)["failed"] == 2
+    assert [(p.status, p.t) for p in off.paths[:2]] == [("too_many_steps", 0.05)] * 2
+    on = track_paths(hom, _start(P1), replace(plain, detour_retry=True))
+    assert outcome_counts(on.paths) == {"regular": 4, "singular": 0, "at_infinity": 0, "failed": 0}
+    assert [p.retried for p in on.paths] == ["endgame_detour", "endgame_detour", "", ""]
+    assert all(p.steps > q.steps for p, q in zip(on.paths[:2], off.paths[:2]))  # the detours' steps count
+    a = p0[0]
+    roots = [(-1 + np.sqrt(1 + 4 * a)) / (2 * a), (-1 - np.sqrt(1 + 4 * a)) / (2 * a)]
+    want = sorted((x, y) for x in roots for y in (1.0, -1.0))
+    got = sorted((p.endpoint[0], p.endpoint[1]) for p in on.paths)
+    assert np.allclose(np.array(got, dtype=complex), np.array(want, dtype=complex), rtol=1e-10)
+
+
+def test_endgame_detour_is_refused_on_a_point_another_path_holds(monkeypatch):
+    """The start points twice, the second copy's fast finish stopped (forced): their detours reach the roots that
+    the first copy holds, and are not kept."""
+    from cdpr_algebra.homotopy.endgame import track_paths
+    from cdpr_algebra.homotopy.start_systems import parameter_homotopy
+
+    (hom,) = parameter_homotopy(_family(), P1, np.array([0.3 - 0.2j, 1.0]), rng=np.random.default_rng(0))
+    _failing_in_the_endgame_zone(monkeypatch, [4, 5, 6, 7])
+    opts = SolveOptions(retry_tight=False, retry_mpmath=False, detour_retry=True, check_path_jumping=False)
+    res = track_paths(hom, np.vstack([_start(P1), _start(P1)]), opts)
+    assert [p.status for p in res.paths[:4]] == ["success"] * 4
+    assert [p.status for p in res.paths[4:]] == ["too_many_steps"] * 4
+    assert not any(p.retried for p in res.paths)
+    assert all(q.steps > p.steps for p, q in zip(res.paths[:4], res.paths[4:]))  # their detours were tracked
+
+
 @pytest.fixture(scope="module")
 def test1():
     from cdpr_algebra.model.robot import load_robot
@@ -195,3 +257,17 @@ def test_detours_complete_a_marionet_subproblem():
     without, _ = solve_taut_set(robot, robot.lengths, (1, 2, 5), certify=False,
                                 options=replace(default_options(), detour_retry=False))
     assert not without.complete and without.outcomes["failed"] > 0
+
+
+def test_endgame_detours_complete_the_last_marionet_subproblem():
+    """Seed 000 Test 3, taut set {1, 2, 5, 6}: two of its Study paths crawl near t = 0.04 (N / |e|^2 ~ 1e-5 .. 1e-7)
+    until their step budget runs out, and so did every re-run with another gamma; the detours around those points
+    (issue 15, twentieth session) end them on regular roots that no other path holds, and every endpoint is
+    certified."""
+    from cdpr_algebra.dgp.solve import solve_taut_set
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot(ROOT / "examples" / "seed000_test3.toml")
+    sub, _ = solve_taut_set(robot, robot.lengths, (0, 1, 4, 5))
+    assert sub.retried.get("endgame_detour", 0) >= 1
+    assert sub.complete and sub.failed_paths == 0 and sub.certified == sub.paths == 216

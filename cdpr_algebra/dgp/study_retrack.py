@@ -263,8 +263,9 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
                             options=None, detours: bool = False, failed_in_study: bool = False):
     """``res`` (the :class:`.homotopy.results.SolveResult` of the taut system ``system`` from ``start_solutions`` at
     ``start_parameters`` to ``target``, run with ``seed`` and ``gamma``) with its failed paths tracked again in Study
-    parameters (module doc); rescued paths (regular, or at infinity through N = 0) have ``retried="study"``.  Returns
-    (result, number rescued).  ``detours``: the Study run makes detours around phase-1 failures (only when ``res``
+    parameters (module doc); rescued paths (regular, or at infinity through N = 0) have ``retried="study"`` (or the
+    Study run's own retry, ``detour`` / ``endgame_detour``).  Returns (result, number rescued).  ``detours``: the
+    Study run makes detours around failures (:mod:`cdpr_algebra.homotopy.detours`; only when ``res``
     holds every path and all of them failed, as :func:`track_study_first` calls it).  ``failed_in_study``: the
     failed paths of ``res`` were tracked in Study parameters in double precision already (by
     :func:`track_study_first`), so only the rescue in extended precision of ``retry_mpmath`` runs (the same homotopy
@@ -312,7 +313,8 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
         if coincides_with_any(regular, x, opts.endgame.cluster_tol):  # the detour retry's test of a new point
             continue
         i = failed[j]
-        extra, how = (precise[j][1], STUDY_EXTENDED) if j in precise else (0, "study")
+        # the Study run's own retries (its detours) named, else "study"
+        extra, how = (precise[j][1], STUDY_EXTENDED) if j in precise else (0, spaths[j].retried or "study")
         paths[i] = replace(paths[i], status=SUCCESS, endpoint=x, t=0j, residual=float(residual[k]),
                            condition=float(cond[k]), accuracy=float(upd[k]),
                            steps=paths[i].steps + spaths[j].steps + extra, winding_number=1, retried=how)
@@ -352,7 +354,8 @@ def track_study_first(system, m: int, start_parameters, start_solutions, target,
     jump of one of the two: that Study path is tracked in the taut system too, and when it ends on a point that no
     other path holds, the Study run had jumped and it takes its taut outcome; else the taut path is
     ``path_jumping`` (failed: nothing is merged).  Returns the :class:`.homotopy.results.SolveResult` of all paths
-    (solutions grouped as the engine groups them; the Study paths' ``retried`` is empty: theirs is the first run)."""
+    (solutions grouped as the engine groups them; the Study paths' ``retried`` is empty, theirs is the first run,
+    unless the Study run made a detour for them: ``detour`` or ``endgame_detour``)."""
     from cdpr_algebra.homotopy.clusters import coincides_with_any
     from cdpr_algebra.homotopy.results import PATH_JUMPING, STEP_TOO_SMALL, PathResult, SolveResult, TrackResult
     from cdpr_algebra.homotopy.solve import group_solutions

@@ -41,7 +41,7 @@ from dataclasses import dataclass, field, asdict, replace
 import numpy as np
 
 from .clusters import duplicate_groups
-from .detours import phase1_detours
+from .detours import endgame_detours, phase1_detours
 from .refinement import refine, relative_residual
 from .results import (AT_INFINITY, DIVERGED, ENDGAME_FAILED, FAILURES, SINGULAR, STEP_TOO_SMALL, SUCCESS,
                       TOO_MANY_STEPS, PathResult, TrackResult)
@@ -147,7 +147,9 @@ class SolveOptions:
       from the points every other path reached (:func:`.detours.phase1_detours`).  Only for a call given every
       start solution of a homotopy whose system at t = te is generic (a parameter homotopy from a generic
       instance): it has exactly as many regular solutions as paths, so once every path holds a distinct regular one
-      there, they are all of them, whichever path holds which (a detour may swap two paths' solutions).
+      there, they are all of them, whichever path holds which (a detour may swap two paths' solutions).  With it,
+      a path whose tracking failed later (in the endgame zone) is tracked around that point too, to t = 0, and
+      kept only on a regular root that no other path ends on (:func:`.detours.endgame_detours`).
     """
 
     tracker: TrackerOptions = field(default_factory=TrackerOptions)
@@ -506,6 +508,9 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
         status[gi[inf]] = AT_INFINITY
     if chart is not None:
         _stopped_before_first_sample(seg, np.arange(N), status, out_x, tfin, te, eo)
+    elif proj is None:  # affine: its tracking failures only (a divergence is the endgame's to decide)
+        _stopped_before_first_sample(seg, np.arange(N), status, out_x, tfin, te, eo, reasons=(STEP_TOO_SMALL,
+                                                                                              TOO_MANY_STEPS))
     rest = np.flatnonzero(status == "")
     if rest.size and proj is not None:
         # first the plain track to t = 0 in the chart: a regular point there with y0 nonzero beyond its accuracy
@@ -589,15 +594,19 @@ def _unsolved_in_affine(homotopy, X, status, eo: EndgameOptions) -> np.ndarray:
     return bad
 
 
-def _stopped_before_first_sample(seg, idx, status, out_x, tfin, te, eo: EndgameOptions, to_out=lambda Y: Y):
-    """Paths ``idx`` of a chart track from t = te towards 0 (``seg``) that failed before reaching the endgame's first
-    sample radius te * ``sample_ratio``: the endgame would track the same path from the same point through the same
-    stretch with the same step control (its first segment, te -> te * ratio), where double precision has already
-    run out (condition 1e10-1e11 near the singular sets at infinity, measured on seed 000 Test 3), so they fail
-    here, with the track's reason, at the t where it stopped, instead of failing a second time in the endgame.
-    Sets their ``status``, ``out_x`` (the last point, ``to_out`` of the chart point: the identity, or the map back
-    to affine coordinates) and ``tfin``."""
-    early = np.flatnonzero((seg.status != SUCCESS) & (np.abs(seg.t) > te * eo.sample_ratio) & (status[idx] == ""))
+def _stopped_before_first_sample(seg, idx, status, out_x, tfin, te, eo: EndgameOptions, to_out=lambda Y: Y,
+                                 reasons=None):
+    """Paths ``idx`` of a chart track from t = te towards 0 (``seg``) that failed (for one of ``reasons``, None: any)
+    before reaching the endgame's first sample radius te * ``sample_ratio``: the endgame would track the same path
+    from the same point through the same stretch with the same step control (its first segment, te -> te * ratio),
+    where double precision has already run out (condition 1e10-1e11 near the singular sets at infinity, measured on
+    seed 000 Test 3), so they fail here, with the track's reason, at the t where it stopped, instead of failing a
+    second time in the endgame (measured, twentieth session, on the affine Study tracks of seed 000 Tests 2 and 3
+    and seed 002's 8-cable robot: all 19 such endgames stopped at the same t, 3000 steps each).  Sets their
+    ``status``, ``out_x`` (the last point, ``to_out`` of the chart point: the identity, or the map back to affine
+    coordinates) and ``tfin``."""
+    failed = seg.status != SUCCESS if reasons is None else np.isin(seg.status, reasons)
+    early = np.flatnonzero(failed & (np.abs(seg.t) > te * eo.sample_ratio) & (status[idx] == ""))
     ii = idx[early]
     status[ii] = seg.status[early]
     with np.errstate(all="ignore"):
@@ -637,13 +646,17 @@ def _run(homotopy, X0, idx, opts: SolveOptions, tr: TrackerOptions):
     status = st1.copy()
     wind = np.ones(n, dtype=int)
     acc = np.full(n, np.inf)
-    tfin = np.full(n, te, dtype=complex)
+    tfin = np.where(st1 == SUCCESS, te, t_fail).astype(complex)
     order = np.full(n, np.nan)
     ok = np.flatnonzero(st1 == SUCCESS)
     if ok.size:
         xo, so, wo, ao, to, sto, oo = _finish(homotopy, x[ok], opts, tr, h[ok])
         x[ok], status[ok], wind[ok], acc[ok], tfin[ok], order[ok] = xo, so, wo, ao, to, oo
         steps[ok] += sto
+    if opts.detour_retry and len(idx) == len(X0):  # failures after phase 1: around them to t = 0
+        inf = None if getattr(homotopy, "chart", None) is None else (
+            lambda Y, a: decide_in_chart(Y, a, o=opts.endgame)[0])
+        endgame_detours(homotopy, X0[idx], x, status, steps, retried, acc, tfin, tr, opts, inf)
     return _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order)
 
 
