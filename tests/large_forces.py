@@ -116,3 +116,39 @@ def large_force_robot(m: int, K: float, seed: int):
     A, b, gg, rho, p, R = hang_platform(rng, Ball, Uall, G)
     robot = Robot(A, b, gg, Q, d, rho, name=f"large_forces_m{m}_K{K:g}")
     return robot, p, R, tau
+
+
+def root_of_the_solved_system(robot, cables, p, R, tau, dps: int = 60):
+    """The root, in world coordinates (p, R, tau), of the normalized DGP system that the homotopy solves (its
+    parameters are rounded to doubles) nearest the constructed equilibrium: 60-digit Newton from it; None when
+    Newton does not converge (updates below 1e-40).  With condition numbers up to ~1e11 this root differs from the
+    constructed one by up to ~1e-5 (relative) in the tensions: the rounding of the robot's data, not an error of the
+    solver."""
+    import mpmath
+
+    import cdpr_algebra.dgp.solve as S
+    from cdpr_algebra.model.taut_equations import decode, encode, taut_family
+
+    m = len(cables)
+    rho = robot.lengths
+    target, c, L, Rw, cb = S._normalized(robot, rho, cables)
+    x0 = S._normalized_coordinates(encode(p, R, tau / rho[list(cables)])[None], m, c, L, Rw, cb, robot.load)[0]
+    F, J, _ = taut_family(m).mp_functions()
+    with mpmath.workdps(dps):
+        pt = [mpmath.mpc(complex(v)) for v in target]
+        x = mpmath.matrix([mpmath.mpc(complex(v)) for v in x0])
+        for _ in range(40):
+            d = mpmath.lu_solve(J(list(x), pt), -F(list(x), pt))
+            x = x + d
+            if mpmath.norm(d) < mpmath.mpf(10) ** -40:
+                X = np.array([[complex(v) for v in x]])
+                pw, Rw_, lam = decode(S._world_coordinates(X, m, c, L, Rw, cb, robot.load), m)
+                return pw[0].real, Rw_[0].real, lam[0].real * rho[list(cables)]
+    return None
+
+
+def matches(s, p, R, tau, size) -> bool:
+    """The DGP solution s is the equilibrium (p, R, tau): pose within 1e-6 (of the robot's size), tensions 1e-6
+    relative."""
+    return (np.max(np.abs(s.position - p)) <= 1e-6 * size and np.max(np.abs(s.rotation - R)) <= 1e-6
+            and np.allclose(s.tensions, tau, rtol=1e-6))
