@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from cdpr_algebra.dgp.solve import solve_taut_set
-from large_forces import large_force_robot
+from large_forces import large_force_robot, matches, root_of_the_solved_system
 
 CASES = [(3, 1e2), (3, 1e4), (3, 1e6), (6, 1e2), (6, 1e4), (6, 1e6),
          pytest.param(4, 1e2, marks=pytest.mark.slow), pytest.param(4, 1e6, marks=pytest.mark.slow),
@@ -32,10 +32,13 @@ def test_large_internal_forces_are_found_or_flagged(m, K):
     assert np.abs(mom).max() <= 1e-9 * scale * robot.size
     sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(m)), certify=False)
     assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
-    hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-6 * robot.size
-            and np.max(np.abs(s.rotation - R)) <= 1e-6]
-    found = len(hits) == 1 and np.allclose(hits[0].tensions, tau, rtol=1e-6)
-    assert found or (not sub.complete and sub.failed_paths > 0), (sub.outcomes, [s.position for s in sols])
+    # the equilibrium as constructed, or as the root of the system solved (its data rounded to doubles: with
+    # condition numbers ~1e13 the two differ by ~1e-3)
+    root = root_of_the_solved_system(robot, tuple(range(m)), p, R, tau)
+    want = [(p, R, tau)] + ([root] if root is not None else [])
+    found = len([s for s in sols if any(matches(s, *w, robot.size) for w in want)]) == 1
+    # flagged: failed paths, or regular endpoints not proven roots
+    assert found or not sub.complete, (sub.outcomes, [s.position for s in sols])
     if sub.complete:
         assert found
 

@@ -230,6 +230,7 @@ def test_forced_failures_make_the_dgp_incomplete_and_the_cli_exit_3(test1, tmp_p
     tiny = replace(base, tracker=replace(base.tracker, max_steps=3))
     monkeypatch.setattr(dgp_mod, "default_options", lambda: tiny)
     monkeypatch.setattr(dgp_mod, "PROJECTIVE_RETRIES", 0)
+    monkeypatch.setattr(dgp_mod, "UNHELD_ROOTS", False)  # failed paths stay failed (no Newton from their estimates)
     res = dgp_mod.dgp(test1, jobs=1, max_m=2, certify=False, exclude=False)  # track the sets of no equilibrium too
     two = [s for s in res.subproblems if len(s.taut) == 2]
     assert two and all(not s.complete and s.failed_paths > 0 for s in two)

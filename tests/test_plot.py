@@ -211,6 +211,7 @@ def test_cli_plot_of_an_incomplete_dgp_exits_3(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr(dgp_mod, "default_options", lambda extended=False: replace(
         base, tracker=replace(base.tracker, max_steps=3)))
     monkeypatch.setattr(dgp_mod, "PROJECTIVE_RETRIES", 0)
+    monkeypatch.setattr(dgp_mod, "UNHELD_ROOTS", False)  # failed paths stay failed (no Newton from their estimates)
     robot = Path(__file__).resolve().parents[1] / "examples" / "seed000_test1.toml"
     out = tmp_path / "eq.png"
     assert main(["plot", str(robot), "--out", str(out), "--jobs", "1"]) == 3

@@ -38,6 +38,8 @@ def failing(monkeypatch):
     tiny = replace(base, tracker=replace(base.tracker, max_steps=3))
     monkeypatch.setattr(dgp_mod, "default_options", lambda: tiny)
     monkeypatch.setattr(dgp_mod, "PROJECTIVE_RETRIES", 0)
+    # and stays failed: Newton from the failed paths' estimates (dgp.unheld_roots) would find the roots
+    monkeypatch.setattr(dgp_mod, "UNHELD_ROOTS", False)
     return dgp_mod
 
 

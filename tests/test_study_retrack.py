@@ -136,7 +136,8 @@ def test_ill_conditioned_study_limits_are_rescued_and_proven(monkeypatch):
     target, c, L, Rw, cb = S._normalized(robot, rho, cables)
     monkeypatch.setattr(S, "STUDY_FIRST", False)  # the taut system first, then the re-track of its failures
     monkeypatch.setattr(S, "STUDY_RETRACK", False)
-    res, failed = S._track(4, target, 0, gamma=False)
+    monkeypatch.setattr(S, "UNHELD_ROOTS", False)  # the re-track's own rules are tested here (dgp.unheld_roots: 25 of
+    res, failed = S._track(4, target, 0, gamma=False)  # the 39 failed paths settled by Newton from their estimates)
     assert failed >= 30
     p_gen, X_gen = S._generic(4)
     again, rescued = retrack_failed_in_study(S.fast_family(4), res, 4, p_gen, X_gen, target, 0, False,

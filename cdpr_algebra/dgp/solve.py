@@ -55,7 +55,8 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   taut system tracks every path first and the paths it leaves failed are tracked again in Study parameters along
   the same parameter path, ``STUDY_RETRACK``, :func:`.study_retrack.retrack_failed_in_study`.)  If one or two failed
   paths remain (at most ``RERUN_MAX_FAILED``), the subproblem is re-run once with a random gamma and another seed,
-  and the run with fewer failures is kept; with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), the
+  and the run with fewer failures is kept (each run's failed paths are first settled, where Newton's method from
+  their last estimates finds regular roots that no other path holds, :mod:`.unheld_roots`); with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), the
   paths still failed are tracked once more in Study parameters, in compiled double-double
   arithmetic wherever double precision fails (:func:`.study_retrack._rescue_in_extended_precision`: at most
   ``MP_RETRY_PATHS`` = 4 paths per run, up to ~10 s each, so off by default).  Every path ends with one outcome (``regular``, ``singular``, ``at_infinity``,
@@ -112,7 +113,8 @@ import numpy as np
 from cdpr_algebra.model.taut_equations import decode, from_cable_frame, to_cable_frame
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .one_cable import one_cable_equilibria
-from .study_retrack import retrack_failed_in_study, track_study_first
+from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, track_study_first
+from .unheld_roots import settle_on_unheld_roots
 from .taut_system import FastTautSystem, fast_family
 from cdpr_algebra.homotopy.results import AT_INFINITY, ENDGAME_FAILED, FAILURES, OUTCOMES, outcome_counts
 from cdpr_algebra.report.jsonable import jsonable
@@ -397,6 +399,7 @@ RERUN_MAX_FAILED = 2  # re-run a subproblem with a new gamma only when at most t
 # Test 3's phase 1 from 533k to 457k steps; 1e-3 (413k) left one more subproblem of Test 2 incomplete.
 PREDICTOR_TOL = 3e-4
 STUDY_FIRST = True  # every path tracked in Study parameters first, the taut system only where Study leaves it undecided
+UNHELD_ROOTS = True  # failed paths settled on regular roots no other path holds, from their estimates (dgp.unheld_roots)
 STUDY_RETRACK = True  # without STUDY_FIRST: failed paths tracked again in Study parameters (dgp.study_retrack)
 PROJECTIVE_RETRIES = 1  # rounds of projective re-tracking of suspect paths (step control tightened 10x)
 
@@ -445,6 +448,10 @@ def _track(m, target, seed, gamma, options=None):
         res = track_taut(np.arange(len(X_gen)))
         if STUDY_RETRACK:
             res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, options)
+    if UNHELD_ROOTS and any(p.status in FAILURES for p in res.track.paths):
+        from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
+
+        res, _ = settle_on_unheld_roots(ParameterHomotopy(fast_family(m), p_gen, target), res, options, RESIDUAL_TOL)
     return res, sum(1 for p in res.track.paths if p.status in FAILURES)
 
 

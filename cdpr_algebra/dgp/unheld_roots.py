@@ -1,0 +1,93 @@
+"""Failed paths settled on regular roots that no other path holds, found by Newton's method from the failed paths'
+own last estimates.
+
+Why this is an account.  Near t = 0 the solutions of the parameter homotopy form N branches and a run's paths hold
+them one to one (a path settled by a detour holds a branch too: its regular endpoint is one no other path ends on).
+A regular root of the target system is the limit of exactly one branch.  So a regular root that no settled path
+ends on (regular or singular; paths at infinity hold branches that diverge) is the limit of a branch that no
+settled path holds: the branch of one of the failed paths.  Found by any means, k distinct such roots account for
+k failed paths; which failed path held which is not claimed (the counts are), and a root found twice counts once.
+
+The means here (:func:`settle_on_unheld_roots`): Newton's method (residuals in double-double) for up to
+``NEWTON_STEPS`` iterations from each failed path's last estimate, and, for a path whose Cauchy endgame saw a cycle of
+two sheets (winding number 2) that did not converge, from the reflection 2 m - x1 of a root x1 found through its
+estimate m: the loops of that endgame enclose a branch point near t = 0 where two regular roots x1, x2 meet, and the
+mean of the two sheets over a loop is (x1 + x2) / 2 (a symmetric function of the cycle is analytic inside it).
+Measured (twentieth session) on the robots of ``tests/large_forces.py`` with m = 6: the two failed paths of each
+flagged robot are such a pair (winding number 2, estimate |x| ~ 8e3); Newton from the estimate reaches the
+constructed equilibrium (|x| ~ 2e2, condition 1e10) in ~20 iterations, and its reflection the partner root.
+A kept root's outcome is ``regular`` with ``retried = "unheld_root"``; it is certified like every other endpoint.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from cdpr_algebra.homotopy.clusters import coincides_with_any
+from cdpr_algebra.homotopy.refinement import refine
+from cdpr_algebra.homotopy.results import ENDGAME_FAILED, FAILURES, SINGULAR, SUCCESS
+from cdpr_algebra.homotopy.solve import group_solutions
+
+__all__ = ["MAX_CONDITION", "NEWTON_STEPS", "SETTLED", "UNHELD_ROOT", "settle_on_unheld_roots"]
+
+NEWTON_STEPS = 40  # Newton iterations from an estimate (ill-conditioned roots converge slowly from afar)
+SETTLED = 1e-10  # the last Newton update (relative) of a kept root
+# the largest condition number of a kept root: Newton's updates, solved in double precision, are then accurate to
+# ~1e-2 (residuals in double-double), so updates that shrink to SETTLED show convergence.  Beyond it (the roots of
+# tests/large_forces.py with m = 6 and tensions 1e5 times the load reach 1e16) nothing is shown: the path stays failed
+MAX_CONDITION = 1e14
+UNHELD_ROOT = "unheld_root"  # the ``retried`` of a failed path settled by this module
+
+
+def _newton(homotopy, X, residual_tol):
+    """Rows X refined at t = 0: (points, their (residual, condition, last update), mask of Newton-quadratic finite
+    roots with a last update <= ``SETTLED``, condition number <= ``MAX_CONDITION`` and residual <= tol)."""
+    X = np.asarray(X, dtype=complex).reshape(-1, homotopy.n)
+    if not len(X):
+        return X, [], np.zeros(0, dtype=bool)
+    with np.errstate(all="ignore"):
+        x, upd, res, cond, quad = refine(homotopy, X, 0.0, max_iter=NEWTON_STEPS)
+    good = quad & (upd <= SETTLED) & (cond <= MAX_CONDITION) & (res <= residual_tol) & np.all(np.isfinite(x), axis=1)
+    return x, list(zip(res, cond, upd)), good
+
+
+def settle_on_unheld_roots(homotopy, result, options, residual_tol: float):
+    """(``result`` with its failed paths settled on distinct regular roots that no other path holds (module doc), the
+    number of failed paths left).  ``homotopy``: the parameter homotopy whose target is the system at t = 0 (its
+    ``n`` unknowns; endpoints in its coordinates); ``options``: the run's SolveOptions (``endgame.cluster_tol``
+    decides coincidence, ``duplicate_tol`` the grouping); ``residual_tol``: the largest relative residual of a
+    kept root."""
+    paths = list(result.track.paths)
+    failed = [i for i, p in enumerate(paths) if p.status in FAILURES]
+    if not failed:
+        return result, 0
+    tol = options.endgame.cluster_tol
+    held = [p.endpoint for p in paths if p.status in (SUCCESS, SINGULAR)]
+    found = []  # (root, (residual, condition, last update))
+
+    def keep(x, info):
+        if not coincides_with_any(held, x, tol) and not coincides_with_any([f for f, _ in found], x, tol):
+            found.append((x, info))
+
+    starts = [i for i in failed if np.all(np.isfinite(paths[i].endpoint))]
+    X, info, good = _newton(homotopy, [paths[i].endpoint for i in starts], residual_tol)
+    roots = {i: x for i, x, g in zip(starts, X, good) if g}
+    for x, inf, g in zip(X, info, good):
+        if g:
+            keep(x, inf)
+    pairs = [2 * paths[i].endpoint - x for i, x in roots.items()
+             if paths[i].status == ENDGAME_FAILED and paths[i].winding_number == 2]
+    Y, info, good = _newton(homotopy, pairs, residual_tol)
+    for y, inf, g in zip(Y, info, good):
+        if g:
+            keep(y, inf)
+    if not found:
+        return result, len(failed)
+    for i, (x, (res, cond, upd)) in zip(failed, found):
+        paths[i] = replace(paths[i], status=SUCCESS, endpoint=x, t=0j, residual=float(res), condition=float(cond),
+                           accuracy=float(upd), winding_number=1, retried=UNHELD_ROOT)
+    track = replace(result.track, paths=tuple(paths))
+    left = len(failed) - min(len(found), len(failed))
+    return replace(result, track=track, solutions=group_solutions(track, options.duplicate_tol, tol)), left

@@ -1,0 +1,112 @@
+"""Issue 15: failed paths settled on regular roots that no other path holds (:mod:`cdpr_algebra.dgp.unheld_roots`).
+
+The family a x^2 + x - 1 = 0, y^2 - b = 0 (four regular roots, known in closed form) solved by a parameter homotopy;
+some of its paths are then marked failed with inexact last estimates, as a failed endgame leaves them.
+"""
+
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from cdpr_algebra.dgp.unheld_roots import UNHELD_ROOT, settle_on_unheld_roots
+from cdpr_algebra.homotopy.endgame import SolveOptions
+from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
+from cdpr_algebra.homotopy.results import ENDGAME_FAILED, STEP_TOO_SMALL, outcome_counts
+from cdpr_algebra.homotopy.solve import solve_parameter_homotopy
+from cdpr_algebra.homotopy.systems import PolynomialSystem
+
+ROOT = Path(__file__).resolve().parents[1]
+P1 = np.array([0.7 + 0.4j, 1.3 - 0.6j])
+P0 = np.array([0.3 - 0.2j, 1.0])
+OPTS = SolveOptions(retry_tight=False, retry_mpmath=False)
+
+
+def _family():
+    x, y, a, b = sp.symbols("x y a b")
+    return PolynomialSystem([a * x**2 + x - 1, y**2 - b], [x, y], [a, b], name="large_roots")
+
+
+def _roots(a, b):
+    r = np.sqrt(1 + 4 * a + 0j)
+    return [np.array([x, y]) for x in ((-1 + r) / (2 * a), (-1 - r) / (2 * a)) for y in (np.sqrt(b + 0j), -np.sqrt(b + 0j))]
+
+
+@pytest.fixture(scope="module")
+def solved():
+    fam = _family()
+    start = np.array(_roots(*P1))
+    res = solve_parameter_homotopy(fam, P1, start, P0, options=OPTS)
+    assert outcome_counts(res.track.paths)["regular"] == 4
+    return ParameterHomotopy(fam, P1, P0), res
+
+
+def _failed(res, which, status=STEP_TOO_SMALL, winding=1):
+    """``res`` with the paths ``which`` (index -> last estimate) failed."""
+    paths = list(res.track.paths)
+    for i, e in which.items():
+        paths[i] = replace(paths[i], status=status, endpoint=np.asarray(e, dtype=complex), t=0.01 + 0j,
+                           winding_number=winding)
+    return replace(res, track=replace(res.track, paths=tuple(paths)))
+
+
+def _index_of(res, root):
+    return next(i for i, p in enumerate(res.track.paths) if np.allclose(p.endpoint, root, rtol=1e-10))
+
+
+def test_failed_paths_end_on_the_roots_nobody_holds(solved):
+    hom, res = solved
+    r = _roots(*P0)
+    i, j = _index_of(res, r[0]), _index_of(res, r[3])
+    broken = _failed(res, {i: r[0] * (1 + 1e-3), j: r[3] * (1 - 2e-3)})
+    out, left = settle_on_unheld_roots(hom, broken, OPTS, 1e-8)
+    assert left == 0 and outcome_counts(out.track.paths)["regular"] == 4
+    assert [out.track.paths[k].retried for k in (i, j)] == [UNHELD_ROOT] * 2
+    got = sorted(tuple(np.round(p.endpoint, 9)) for p in out.track.paths)
+    want = sorted(tuple(np.round(x, 9)) for x in r)
+    assert np.allclose(np.array(got), np.array(want), rtol=1e-9)
+    assert len(out.solutions) == 4
+
+
+def test_a_root_another_path_holds_is_refused(solved):
+    """The estimate of the failed path lies by a root that path k holds: Newton finds it, and it is not kept."""
+    hom, res = solved
+    r = _roots(*P0)
+    i, k = _index_of(res, r[0]), _index_of(res, r[1])
+    out, left = settle_on_unheld_roots(hom, _failed(res, {i: r[1] * (1 + 1e-4)}), OPTS, 1e-8)
+    assert left == 1 and out.track.paths[i].status == STEP_TOO_SMALL
+    assert np.allclose(out.track.paths[k].endpoint, r[1])
+
+
+def test_the_partner_of_a_two_sheet_cycle_by_reflection(solved):
+    """Two failed paths whose endgame saw one cycle of two sheets, both with the cycle's mean as their estimate
+    (slightly off, as Cauchy estimates are): Newton from it finds one root, from its reflection through the mean
+    the other.  Without the winding number 2 the reflection is not tried and one path stays failed."""
+    hom, res = solved
+    r = _roots(*P0)
+    i, j = _index_of(res, r[0]), _index_of(res, r[2])  # the two x-roots with the same y
+    mean = (r[0] + r[2]) / 2
+    est = mean + 0.05 * (r[0] - mean)
+    out, left = settle_on_unheld_roots(hom, _failed(res, {i: est, j: est}, ENDGAME_FAILED, 2), OPTS, 1e-8)
+    assert left == 0
+    ends = sorted(tuple(np.round(out.track.paths[k].endpoint, 9)) for k in (i, j))
+    assert np.allclose(np.array(ends), np.array(sorted(tuple(np.round(x, 9)) for x in (r[0], r[2]))), rtol=1e-9)
+    _, left1 = settle_on_unheld_roots(hom, _failed(res, {i: est, j: est}, ENDGAME_FAILED, 1), OPTS, 1e-8)
+    assert left1 == 1
+
+
+def test_large_force_robot_returns_its_equilibrium():
+    """A 6-cable robot built around an equilibrium with tensions 1e3 times the load (tests/large_forces.py): the two
+    paths of a two-sheet cycle fail in the endgame; Newton from their estimate returns the constructed equilibrium
+    (before, it was not returned: the subproblem was only flagged incomplete)."""
+    from cdpr_algebra.dgp.solve import solve_taut_set
+    from large_forces import large_force_robot
+
+    robot, p, R, tau = large_force_robot(6, 1e3, 300 + 60)
+    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(6)))
+    assert sub.retried.get(UNHELD_ROOT, 0) >= 1
+    assert any(np.max(np.abs(s.position - p)) <= 1e-6 * robot.size and np.max(np.abs(s.rotation - R)) <= 1e-6
+               and np.allclose(s.tensions, tau, rtol=1e-4) for s in sols)
+    assert sum(sub.outcomes.values()) == sub.paths == 40
