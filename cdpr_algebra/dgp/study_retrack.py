@@ -112,12 +112,10 @@ class FastStudySystem(LazyFamilySystem):
             return np.sum(e * e, axis=1) / np.sum(np.abs(e) ** 2, axis=1)
 
     def compiled_kernels(self):
-        """Evaluators for the compiled tracker (:mod:`cdpr_algebra.dgp.kernels`), dense LU."""
-        from cdpr_algebra.homotopy.compiled import dense_apply, dense_factor
+        """Evaluators for the compiled tracker (:mod:`cdpr_algebra.dgp.kernels`), the LU with the lam columns first."""
+        from .kernels import study_apply, study_factor, study_fj, study_fjt
 
-        from .kernels import study_fj, study_fjt
-
-        return study_fj, study_fjt, dense_factor, dense_apply
+        return study_fj, study_fjt, study_factor, study_apply
 
     def compiled_residual_dd(self):
         """The residual in double-double (:mod:`cdpr_algebra.generated.study_residual_dd`) for the compiled tracker's
