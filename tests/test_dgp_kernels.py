@@ -100,18 +100,23 @@ def test_chart_solve_equals_dense(m):
     Y = rng.normal(size=(2, fam.n + 1)) + 1j * rng.normal(size=(2, fam.n + 1))
     Y[1, 0] = 1e-6
     _, Js = Fh.evaluate_and_jacobian(Y, p)
-    n = fam.n + 1
+    _assert_solves_like_numpy(chart_factor, chart_apply, Js, rng)
+    assert Fh.compiled_kernels()[2] is chart_factor
+
+
+def _assert_solves_like_numpy(factor, apply, Js, rng):
+    """factor / apply (a compiled tracker's LU) solve each J of Js like numpy, for three right-hand sides."""
     for J in Js:
         J = np.ascontiguousarray(J)
+        n = len(J)
         A, piv, out = np.zeros((n, n), complex), np.zeros(n, np.int64), np.empty(n, complex)
-        assert chart_factor(J, A, piv)
+        assert factor(J, A, piv)
         for _ in range(3):
             b = rng.normal(size=n) + 1j * rng.normal(size=n)
-            chart_apply(J, A, piv, b, out)
+            apply(J, A, piv, b, out)
             ref = np.linalg.solve(J, b)
             assert np.abs(out - ref).max() <= 1e-14 * np.linalg.cond(J) * np.abs(ref).max()
             assert np.abs(J @ out - b).max() <= 1e-12 * np.abs(J).max() * np.abs(out).max()
-    assert Fh.compiled_kernels()[2] is chart_factor
 
 
 def test_homogenized_eval_reuses_the_origin_only_for_the_same_parameters():
@@ -168,16 +173,6 @@ def test_study_solve_equals_dense(m):
     X = rng.normal(size=(2, fam.n)) + 1j * rng.normal(size=(2, fam.n))
     X[1, :4] = [1.0, 1j, 1e-3, 0.2]  # e . e = 1e-6 + 0.04 - ... nearly isotropic in its first two entries
     _, Js = fam.evaluate_and_jacobian(X, p)
-    n = fam.n
-    for J in Js:
-        J = np.ascontiguousarray(J)
-        assert np.all(J[: m + 2, 8:] == 0)  # lam enters the statics rows only
-        A, piv, out = np.zeros((n, n), complex), np.zeros(n, np.int64), np.empty(n, complex)
-        assert study_factor(J, A, piv)
-        for _ in range(3):
-            b = rng.normal(size=n) + 1j * rng.normal(size=n)
-            study_apply(J, A, piv, b, out)
-            ref = np.linalg.solve(J, b)
-            assert np.abs(out - ref).max() <= 1e-14 * np.linalg.cond(J) * np.abs(ref).max()
-            assert np.abs(J @ out - b).max() <= 1e-12 * np.abs(J).max() * np.abs(out).max()
+    assert np.all(Js[:, : m + 2, 8:] == 0)  # lam enters the statics rows only
+    _assert_solves_like_numpy(study_factor, study_apply, Js, rng)
     assert fam.compiled_kernels()[2] is study_factor

@@ -137,48 +137,50 @@ def _reverse(x, a, b):
         j -= 1
 
 
-@nb.njit(cache=True)
-def _chart_row(r, m):
-    """The row of a chart Jacobian (the homogenized taut system, y0 first, then the chart row) that is row r of the
-    reordered system: the 6 statics rows, the chart row, then the others in order."""
-    if r < 6:
-        return 6 + m + r
-    if r == 6:
-        return 12 + m
-    return r - 7
+@nb.njit(cache=True, error_model="numpy", inline="always")
+def _lam_first_factor(J, A, piv, m, lead):
+    """LU factors (in A, piv) of a square J whose last m columns (lam) are zero outside its last ``lead`` rows, reordered
+    with the lam columns first and those rows on top: the first m eliminations touch ``lead`` rows only
+    (:func:`.homotopy.compiled.lu_factor_sparse_lead`; partial pivoting, the factors of the full elimination of the
+    reordered matrix; m <= lead), the rest is dense.  False when J is singular."""
+    n = J.shape[1]
+    k = n - m
+    for r in range(n):
+        i = n - lead + r if r < lead else r - lead
+        for c in range(m):
+            A[r, c] = J[i, k + c]
+        for j in range(k):
+            A[r, m + j] = J[i, j]
+    return lu_factor_sparse_lead(A, piv, n, m, lead)
+
+
+@nb.njit(cache=True, error_model="numpy", inline="always")
+def _lam_first_apply(J, A, piv, b, out, m, lead):
+    """out = J^{-1} b from the factors of :func:`_lam_first_factor`: the rows of b reordered into ``out``, solved
+    there, and its entries (lam first) rotated back into place by three reversals (no allocation)."""
+    n = b.shape[0]
+    for r in range(n):
+        out[r] = b[n - lead + r if r < lead else r - lead]
+    lu_apply_sparse_lead(A, piv, out, n, m, lead)
+    _reverse(out, 0, m)
+    _reverse(out, m, n)
+    _reverse(out, 0, n)
 
 
 @nb.njit(FACTOR_SIG, cache=True, error_model="numpy")
 def chart_factor(J, A, piv):
     """LU factors (in A, piv) of a Jacobian of the taut system homogenized on a chart (unknowns y0, p, u, v, w, lam;
-    rows F_h, then the chart row): lam enters only the 6 statics rows and the chart row, so with the lam columns
-    first and those 7 rows on top the first m eliminations touch 7 rows only
-    (:func:`.homotopy.compiled.lu_factor_sparse_lead`; partial pivoting, the factors of the full elimination of the
-    reordered matrix), the rest is dense.  The w block is y0 I here (zero at infinity), so the w elimination of
-    :func:`taut_factor` does not apply.  False when J is singular."""
-    n = J.shape[1]
-    m = n - 13
-    for r in range(n):
-        i = _chart_row(r, m)
-        for c in range(m):
-            A[r, c] = J[i, 13 + c]
-        for j in range(13):
-            A[r, m + j] = J[i, j]
-    return lu_factor_sparse_lead(A, piv, n, m, 7)
+    rows F_h, then the chart row): lam enters only the 6 statics rows and the chart row, the last 7 rows, so with the
+    lam columns first and those rows on top the first m eliminations touch 7 rows only (:func:`_lam_first_factor`).
+    The w block is y0 I here (zero at infinity), so the w elimination of :func:`taut_factor` does not apply.  False
+    when J is singular."""
+    return _lam_first_factor(J, A, piv, J.shape[1] - 13, 7)
 
 
 @nb.njit(APPLY_SIG, cache=True, error_model="numpy")
 def chart_apply(J, A, piv, b, out):
-    """out = J^{-1} b from the factors of :func:`chart_factor`: the rows of b reordered into ``out``, solved there,
-    and its entries (lam first) rotated back into place by three reversals (no allocation)."""
-    n = b.shape[0]
-    m = n - 13
-    for r in range(n):
-        out[r] = b[_chart_row(r, m)]
-    lu_apply_sparse_lead(A, piv, out, n, m, 7)
-    _reverse(out, 0, m)
-    _reverse(out, m, n)
-    _reverse(out, 0, n)
+    """out = J^{-1} b from the factors of :func:`chart_factor`."""
+    _lam_first_apply(J, A, piv, b, out, b.shape[0] - 13, 7)
 
 
 # the equations in Study parameters (cdpr_algebra.model.study_equations), compiled on first use
@@ -202,41 +204,16 @@ def study_batch(X, P, DP, F, J, HT, with_ht):
         _study(X[k], P[k], DP[k], F[k], J[k], HT[k], with_ht)
 
 
-@nb.njit(cache=True)
-def _study_row(r, m):
-    """The row of a Study Jacobian (rows: chart, e . g, the m spheres, the 6 statics rows) that is row r of the
-    reordered system: the 6 statics rows first, then the others in order."""
-    if r < 6:
-        return m + 2 + r
-    return r - 6
-
-
 @nb.njit(FACTOR_SIG, cache=True, error_model="numpy")
 def study_factor(J, A, piv):
-    """LU factors (in A, piv) of a Jacobian of the equations in Study parameters (unknowns e, g, lam): lam enters only
-    the 6 statics rows, so with the lam columns first and those rows on top the first m eliminations touch 6 rows
-    only (:func:`.homotopy.compiled.lu_factor_sparse_lead`; partial pivoting, the factors of the full elimination of
-    the reordered matrix; m <= 6), the rest is dense.  False when J is singular."""
-    n = J.shape[1]
-    m = n - 8
-    for r in range(n):
-        i = _study_row(r, m)
-        for c in range(m):
-            A[r, c] = J[i, 8 + c]
-        for j in range(8):
-            A[r, m + j] = J[i, j]
-    return lu_factor_sparse_lead(A, piv, n, m, 6)
+    """LU factors (in A, piv) of a Jacobian of the equations in Study parameters (unknowns e, g, lam; rows: chart,
+    e . g, the m spheres, the 6 statics rows): lam enters only the statics rows, the last 6, so with the lam columns
+    first and those rows on top the first m eliminations touch 6 rows only (:func:`_lam_first_factor`; m <= 6).
+    False when J is singular."""
+    return _lam_first_factor(J, A, piv, J.shape[1] - 8, 6)
 
 
 @nb.njit(APPLY_SIG, cache=True, error_model="numpy")
 def study_apply(J, A, piv, b, out):
-    """out = J^{-1} b from the factors of :func:`study_factor`: the rows of b reordered into ``out``, solved there, and
-    its entries (lam first) rotated back into place by three reversals (no allocation)."""
-    n = b.shape[0]
-    m = n - 8
-    for r in range(n):
-        out[r] = b[_study_row(r, m)]
-    lu_apply_sparse_lead(A, piv, out, n, m, 6)
-    _reverse(out, 0, m)
-    _reverse(out, m, n)
-    _reverse(out, 0, n)
+    """out = J^{-1} b from the factors of :func:`study_factor`."""
+    _lam_first_apply(J, A, piv, b, out, b.shape[0] - 8, 6)
