@@ -38,13 +38,17 @@ ENDGAME_DETOUR_FRACTIONS = (0.5, 0.8)  # radii of endgame_detours' half circles,
 ENDGAME_DETOUR = "endgame_detour"  # the ``retried`` of a path kept by endgame_detours (phase1_detours: "detour")
 
 
-def _detours(homotopy, X0, bad, tf, distances, t_end, tr, steps, keep):
+def _detours(homotopy, X0, bad, tf, distances, t_end, tr, opts, x, status, steps, held, keep, at_infinity=None):
     """Track the paths ``bad`` (rows of the start points X0) from t = 1 along the real axis to t_f + d, on a half
     circle about t_f (``DETOUR_CHORDS`` chords) to t_f - d, then straight to ``t_end``, for each radius d in
     ``distances`` (arrays over ``bad``, NaN where that radius is not tried; the smaller radii first), above the
-    real axis, then below.  The approach is tracked once, to t_f + the largest d and on to the smaller.
-    ``keep(rows, points) -> kept rows`` decides on the points reached at ``t_end``; a kept path is not tried again.
-    Steps are added to ``steps``."""
+    real axis, then below.  The approach is tracked once, to t_f + the largest d and on to the smaller.  A point
+    reached at ``t_end`` is kept when Newton's method converges there quadratically with condition number <=
+    ``endgame.singular_condition``, it is not at infinity (``at_infinity(Y, accuracy)``, when given) and it differs
+    (each coordinate at its own scale, ``endgame.cluster_tol``) from the points ``x`` of every path whose status is
+    one of ``held`` (those kept before it included): ``keep(row, point, last update)`` records it (its status
+    becomes ``success``), and the path is not tried again.  Steps are added to ``steps``."""
+    eo = opts.endgame
     pending = np.ones(len(bad), dtype=bool)
     starts = {}
     xa, ta, ok = X0[bad].copy(), np.ones(len(bad), dtype=complex), np.ones(len(bad), dtype=bool)
@@ -78,9 +82,17 @@ def _detours(homotopy, X0, bad, tf, distances, t_end, tr, steps, keep):
             steps[rows[a]] += seg.steps
             live[a] &= seg.status == SUCCESS
         a = np.flatnonzero(live)
-        if a.size:
-            kept = set(keep(rows[a], xc[a]))
-            pending[sel] &= ~np.isin(rows, list(kept))
+        if not a.size:
+            continue
+        xr, upd, _, cond, quad = refine(homotopy, xc[a], t_end, tol=eo.refine_tol)
+        good = quad & (cond <= eo.singular_condition)
+        if at_infinity is not None and good.any():
+            good[good] &= ~at_infinity(xr[good], upd[good])
+        for j, k in enumerate(a):
+            if good[j] and not coincides_with_any(x[np.isin(status, held)], xr[j], eo.cluster_tol):
+                status[rows[k]] = SUCCESS
+                keep(rows[k], xr[j], upd[j])
+                pending[sel[k]] = False
 
 
 def phase1_detours(homotopy, X0, x, status, steps, retried, h, t_fail, te, tr, opts):
@@ -91,7 +103,6 @@ def phase1_detours(homotopy, X0, x, status, steps, retried, h, t_fail, te, tr, o
     (``retried = "detour"``) only when Newton's method converges there quadratically with a moderate condition
     number and it is distinct (each coordinate at its own scale, ``endgame.cluster_tol``) from every other path's
     point at te and from the points kept before it."""
-    eo = opts.endgame
     bad = np.array([i for i in np.flatnonzero(status != SUCCESS) if te < t_fail[i].real < 1.0], dtype=int)
     if not bad.size:
         return
@@ -101,17 +112,10 @@ def phase1_detours(homotopy, X0, x, status, steps, retried, h, t_fail, te, tr, o
         d = np.minimum(np.minimum(r, 1.0 - tf), tf - te)
         distances.append(np.where(d > 1e-3, d, np.nan))
 
-    def keep(rows, points):
-        xr, _, _, cond, quad = refine(homotopy, points, te, tol=eo.refine_tol)
-        kept = []
-        for j, i in enumerate(rows):
-            if quad[j] and cond[j] <= eo.singular_condition and not coincides_with_any(x[status == SUCCESS], xr[j],
-                                                                                      eo.cluster_tol):
-                x[i], status[i], retried[i], h[i] = xr[j], SUCCESS, "detour", np.nan
-                kept.append(i)
-        return kept
+    def keep(i, point, _update):
+        x[i], retried[i], h[i] = point, "detour", np.nan
 
-    _detours(homotopy, X0, bad, tf, distances, te, tr, steps, keep)
+    _detours(homotopy, X0, bad, tf, distances, te, tr, opts, x, status, steps, (SUCCESS,), keep)
 
 
 def endgame_detours(homotopy, X0, x, status, steps, retried, acc, tfin, tr, opts, at_infinity=None):
@@ -122,7 +126,6 @@ def endgame_detours(homotopy, X0, x, status, steps, retried, acc, tfin, tr, opts
     Newton's method converges there quadratically with condition number <= ``endgame.singular_condition``, it is
     not at infinity (``at_infinity(Y, accuracy)``, for homotopies in a projective chart), and it differs from every
     other path's regular or singular endpoint and from those kept before it."""
-    eo = opts.endgame
     bad = np.array([i for i in np.flatnonzero(np.isin(status, (STEP_TOO_SMALL, TOO_MANY_STEPS)))
                     if 0.0 < tfin[i].real < 1.0 and tfin[i].imag == 0.0], dtype=int)
     if not bad.size:
@@ -130,16 +133,8 @@ def endgame_detours(homotopy, X0, x, status, steps, retried, acc, tfin, tr, opts
     tf = tfin[bad].real
     distances = [f * np.minimum(tf, 1.0 - tf) for f in ENDGAME_DETOUR_FRACTIONS]
 
-    def keep(rows, points):
-        xr, upd, _, cond, quad = refine(homotopy, points, 0.0, tol=eo.refine_tol)
-        good = quad & (cond <= eo.singular_condition)
-        if at_infinity is not None and good.any():
-            good[good] &= ~at_infinity(xr[good], upd[good])
-        kept = []
-        for j, i in enumerate(rows):
-            if good[j] and not coincides_with_any(x[np.isin(status, (SUCCESS, SINGULAR))], xr[j], eo.cluster_tol):
-                x[i], status[i], retried[i], acc[i], tfin[i] = xr[j], SUCCESS, ENDGAME_DETOUR, upd[j], 0.0
-                kept.append(i)
-        return kept
+    def keep(i, point, update):
+        x[i], retried[i], acc[i], tfin[i] = point, ENDGAME_DETOUR, update, 0.0
 
-    _detours(homotopy, X0, bad, tf, distances, 0.0, tr, steps, keep)
+    _detours(homotopy, X0, bad, tf, distances, 0.0, tr, opts, x, status, steps, (SUCCESS, SINGULAR), keep,
+             at_infinity)

@@ -57,8 +57,7 @@ from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 
-from .clusters import linked_groups
-from .clusters import duplicate_groups
+from .clusters import duplicate_groups, linked_groups
 from .endgame import SolveOptions
 from .homotopies import ParameterHomotopy
 from .monodromy import MonodromyOptions, monodromy_solve
