@@ -110,3 +110,53 @@ def test_large_force_robot_returns_its_equilibrium():
     assert any(np.max(np.abs(s.position - p)) <= 1e-6 * robot.size and np.max(np.abs(s.rotation - R)) <= 1e-6
                and np.allclose(s.tensions, tau, rtol=1e-4) for s in sols)
     assert sum(sub.outcomes.values()) == sub.paths == 40
+
+
+def test_roots_reached_in_study_parameters_settle_two_failed_paths():
+    """Seed 002's 8-cable robot, taut set {1, 3, 4, 5, 8}: two paths fail near t = 2e-5 where the pose grows without
+    bound (N / |e|^2 ~ 3e-7); Newton's method in Study parameters from their last Study points reaches two roots that
+    no other path holds (:func:`cdpr_algebra.dgp.study_retrack.study_roots`), and the subproblem is complete.  The
+    roots are checked by 50-digit Newton in the taut system (independent of the double-precision refinement), and
+    without the Study step the two paths stay failed."""
+    import mpmath
+
+    import cdpr_algebra.dgp.solve as S
+    from cdpr_algebra.model.robot import load_robot
+    from cdpr_algebra.model.taut_equations import taut_family
+
+    robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
+    cables = (0, 2, 3, 4, 7)
+    target = S._normalized(robot, robot.lengths, cables)[0]
+    res, failed = S._track(5, target, 0, gamma=False)
+    paths = res.track.paths
+    assert failed == 0 and outcome_counts(paths) == {"regular": 140, "singular": 0, "at_infinity": 0, "failed": 0}
+    found = [p.endpoint for p in paths if p.retried == UNHELD_ROOT]
+    others = [p.endpoint for p in paths if p.retried != UNHELD_ROOT]
+    assert len(found) == 2
+    F, J, _ = taut_family(5).mp_functions()
+    with mpmath.workdps(50):
+        pt = [mpmath.mpc(complex(v)) for v in target]
+        for x0 in found:
+            x = mpmath.matrix([mpmath.mpc(complex(v)) for v in x0])
+            for _ in range(30):
+                d = mpmath.lu_solve(J(list(x), pt), -F(list(x), pt))
+                x = x + d
+            assert mpmath.norm(d) < mpmath.mpf(10) ** -30  # converged: a root of the system solved
+            root = np.array([complex(v) for v in x])
+            assert np.max(np.abs(root - x0)) <= 1e-8 * np.max(np.abs(root))
+            assert np.max(np.abs(root)) > 1e6  # a large pose, not at infinity
+            assert all(np.max(np.abs(root - y)) > 1e-6 * np.max(np.abs(root)) for y in others)
+    assert np.max(np.abs(found[0] - found[1])) > 1e-6 * np.max(np.abs(found[0]))
+    sub = S.solve_taut_set(robot, robot.lengths, cables)[0]
+    assert sub.complete and sub.certified == 140 and sub.retried == {UNHELD_ROOT: 2}
+
+
+def test_without_the_study_roots_those_paths_stay_failed(monkeypatch):
+    import cdpr_algebra.dgp.solve as S
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
+    target = S._normalized(robot, robot.lengths, (0, 2, 3, 4, 7))[0]
+    monkeypatch.setattr(S, "study_roots", lambda *a: np.zeros((0, 17), dtype=complex))
+    res, failed = S._track(5, target, 0, gamma=False)
+    assert failed == 2 and sum(p.retried == UNHELD_ROOT for p in res.track.paths) == 0

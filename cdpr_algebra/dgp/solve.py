@@ -56,7 +56,8 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   the same parameter path, ``STUDY_RETRACK``, :func:`.study_retrack.retrack_failed_in_study`.)  If one or two failed
   paths remain (at most ``RERUN_MAX_FAILED``), the subproblem is re-run once with a random gamma and another seed,
   and the run with fewer failures is kept (each run's failed paths are first settled, where Newton's method from
-  their last estimates finds regular roots that no other path holds, :mod:`.unheld_roots`); with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), the
+  their last estimates, and in Study parameters from the Study run's last points, :func:`.study_retrack.study_roots`,
+  finds regular roots that no other path holds, :mod:`.unheld_roots`); with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), the
   paths still failed are tracked once more in Study parameters, in compiled double-double
   arithmetic wherever double precision fails (:func:`.study_retrack._rescue_in_extended_precision`: at most
   ``MP_RETRY_PATHS`` = 4 paths per run, up to ~10 s each, so off by default).  Every path ends with one outcome (``regular``, ``singular``, ``at_infinity``,
@@ -113,8 +114,8 @@ import numpy as np
 from cdpr_algebra.model.taut_equations import decode, from_cable_frame, to_cable_frame
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .one_cable import one_cable_equilibria
-from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, track_study_first
-from .unheld_roots import settle_on_unheld_roots
+from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, study_roots, track_study_first
+from .unheld_roots import MAX_CONDITION, NEWTON_STEPS, SETTLED, settle_on_unheld_roots
 from .taut_system import FastTautSystem, fast_family
 from cdpr_algebra.homotopy.results import AT_INFINITY, ENDGAME_FAILED, FAILURES, OUTCOMES, outcome_counts
 from cdpr_algebra.report.jsonable import jsonable
@@ -438,9 +439,10 @@ def _track(m, target, seed, gamma, options=None):
                                gamma=gamma, retries=PROJECTIVE_RETRIES)
         return _tension_infinity_undecided(res, m)
 
+    estimates = {}  # the Study run's last points of the paths it left failed
     if STUDY_FIRST:
         res = track_study_first(fast_family(m), m, p_gen, X_gen, target, seed, gamma, options,
-                                lambda rows: track_taut(rows, detour=False))
+                                lambda rows: track_taut(rows, detour=False), estimates)
         if options.retry_mpmath and any(p.status in FAILURES for p in res.track.paths):
             res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, options,
                                              failed_in_study=True)
@@ -451,7 +453,10 @@ def _track(m, target, seed, gamma, options=None):
     if UNHELD_ROOTS and any(p.status in FAILURES for p in res.track.paths):
         from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
 
-        res, _ = settle_on_unheld_roots(ParameterHomotopy(fast_family(m), p_gen, target), res, options, RESIDUAL_TOL)
+        left = [i for i, p in enumerate(res.track.paths) if p.status in FAILURES and i in estimates]
+        more = study_roots(m, p_gen, target, [estimates[i] for i in left], NEWTON_STEPS, SETTLED, MAX_CONDITION)
+        res, _ = settle_on_unheld_roots(ParameterHomotopy(fast_family(m), p_gen, target), res, options, RESIDUAL_TOL,
+                                        more)
     return res, sum(1 for p in res.track.paths if p.status in FAILURES)
 
 

@@ -77,7 +77,7 @@ from cdpr_algebra.model.study_equations import STUDY_CHART_PARAMETERS, from_stud
 from .taut_system import LazyFamilySystem
 
 __all__ = ["FastStudySystem", "fast_study_family", "retrack_failed_in_study", "track_study_first", "warm_study_kernels",
-           "RESIDUAL_TOL", "TAUT_FALLBACK"]
+           "study_roots", "RESIDUAL_TOL", "TAUT_FALLBACK"]
 
 TAUT_FALLBACK = "taut"  # retried kind of a path that the Study run left undecided and the taut system settled
 RESIDUAL_TOL = 1e-8  # residual of the mapped-back endpoint in the taut system after Newton (refinement.refine's measure)
@@ -258,7 +258,8 @@ def _rescue_in_extended_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: 
 
 
 def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutions, target, seed: int, gamma: bool,
-                            options=None, detours: bool = False, failed_in_study: bool = False):
+                            options=None, detours: bool = False, failed_in_study: bool = False,
+                            estimates: dict | None = None):
     """``res`` (the :class:`.homotopy.results.SolveResult` of the taut system ``system`` from ``start_solutions`` at
     ``start_parameters`` to ``target``, run with ``seed`` and ``gamma``) with its failed paths tracked again in Study
     parameters (module doc); rescued paths (regular, or at infinity through N = 0) have ``retried="study"`` (or the
@@ -267,7 +268,8 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     holds every path and all of them failed, as :func:`track_study_first` calls it).  ``failed_in_study``: the
     failed paths of ``res`` were tracked in Study parameters in double precision already (by
     :func:`track_study_first`), so only the rescue in extended precision of ``retry_mpmath`` runs (the same homotopy
-    in double precision again would fail the same way)."""
+    in double precision again would fail the same way).  ``estimates``: a dict that receives {path: its last point
+    in Study coordinates} for the paths that the Study run left failed (:func:`study_roots` starts from them)."""
     from cdpr_algebra.homotopy.clusters import coincides_with_any
     from cdpr_algebra.homotopy.refinement import refine
     from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
@@ -329,6 +331,8 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     for j, q in enumerate(spaths):  # the others keep their outcome; their steps include the Study run's
         if j not in done:
             i = failed[j]
+            if estimates is not None and q.status in FAILURES and np.all(np.isfinite(q.endpoint)):
+                estimates[i] = q.endpoint
             paths[i] = replace(paths[i], steps=paths[i].steps + q.steps + (precise[j][1] if j in precise else 0))
     if not rescued:
         return replace(res, track=replace(res.track, paths=tuple(paths))), 0
@@ -338,7 +342,7 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
 
 
 def track_study_first(system, m: int, start_parameters, start_solutions, target, seed: int, gamma: bool, options,
-                      track_taut):
+                      track_taut, estimates: dict | None = None):
     """Every path of the parameter homotopy from ``start_solutions`` (taut coordinates) at ``start_parameters`` to
     ``target`` tracked in Study parameters first, then in the taut ``system`` only where Study leaves it undecided.
 
@@ -353,7 +357,8 @@ def track_study_first(system, m: int, start_parameters, start_solutions, target,
     other path holds, the Study run had jumped and it takes its taut outcome; else the taut path is
     ``path_jumping`` (failed: nothing is merged).  Returns the :class:`.homotopy.results.SolveResult` of all paths
     (solutions grouped as the engine groups them; the Study paths' ``retried`` is empty, theirs is the first run,
-    unless the Study run made a detour for them: ``detour`` or ``endgame_detour``)."""
+    unless the Study run made a detour for them: ``detour`` or ``endgame_detour``).  ``estimates``: as in
+    :func:`retrack_failed_in_study`, the Study run's last points of its failed paths."""
     from cdpr_algebra.homotopy.clusters import coincides_with_any
     from cdpr_algebra.homotopy.results import PATH_JUMPING, STEP_TOO_SMALL, PathResult, SolveResult, TrackResult
     from cdpr_algebra.homotopy.solve import group_solutions
@@ -363,7 +368,7 @@ def track_study_first(system, m: int, start_parameters, start_solutions, target,
     todo = tuple(PathResult(i, STEP_TOO_SMALL, X[i], 1.0 + 0j, nan, nan, nan, 0) for i in range(len(X)))
     blank = SolveResult(solutions=(), track=TrackResult(paths=todo, seconds=0.0, seed=seed))
     sres, _ = retrack_failed_in_study(system, blank, m, start_parameters, X, target, seed, gamma,
-                                      replace(options, retry_mpmath=False), detours=True)
+                                      replace(options, retry_mpmath=False), detours=True, estimates=estimates)
     paths = [replace(p, retried="") if p.retried == "study" else p for p in sres.track.paths]
     rest = [i for i, p in enumerate(paths) if p.status in FAILURES]
     template = sres
@@ -401,3 +406,33 @@ def track_study_first(system, m: int, start_parameters, start_solutions, target,
     track = replace(template.track, paths=tuple(paths), seed=seed)
     sols = group_solutions(track, options.duplicate_tol, options.endgame.cluster_tol)
     return replace(template, track=track, solutions=sols)
+
+
+def study_roots(m: int, start_parameters, target, estimates, newton_steps: int, settled: float, max_condition: float):
+    """Roots of the equations in Study parameters at the ``target`` (t = 0) reached by Newton's method (residuals in
+    double-double, at most ``newton_steps`` iterations) from the Study points ``estimates`` (a failed path's last
+    point), in taut coordinates: those where Newton converges quadratically to a last update <= ``settled`` with a
+    condition number <= ``max_condition``, at a pose (N = e . e nonzero beyond that update: not a point at infinity).
+
+    Why.  A path of the taut system whose pose grows without bound on the way (N / |e|^2 ~ 1e-7, |R| ~ 1e6) is
+    ill-conditioned in both coordinates near t = 0, and its tracking fails there; Newton's method in the taut system
+    from its estimate does not reach the root, while in Study parameters the same root has a moderate condition
+    number.  Measured (twenty-first session) on seed 002's 8-cable robot, taut set {1, 3, 4, 5, 8}: the two failed
+    paths' Study estimates at t = 2.4e-5 lead to two distinct roots (scaled condition 9e10 in Study parameters,
+    1e14 in the taut system, |x| = 2.4e6 there), confirmed by Newton's method at 60 digits.
+    The caller keeps a root only as :func:`.unheld_roots.settle_on_unheld_roots` keeps any."""
+    from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
+    from cdpr_algebra.homotopy.refinement import refine
+
+    Y = np.asarray(list(estimates), dtype=complex).reshape(-1, 8 + m)
+    if not len(Y):
+        return np.zeros((0, 12 + m), dtype=complex)
+    chart = study_chart()
+    hom = ParameterHomotopy(fast_study_family(m), np.concatenate([start_parameters, chart]),
+                            np.concatenate([np.asarray(target, dtype=complex), chart]))
+    with np.errstate(all="ignore"):
+        y, upd, _, cond, quad = refine(hom, Y, 0.0, max_iter=newton_steps)
+        pose = np.abs(FastStudySystem.infinity_coordinate(y)) > 1e3 * np.maximum(upd, 1e-16)
+        good = quad & (upd <= settled) & (cond <= max_condition) & pose & np.all(np.isfinite(y), axis=1)
+        X = from_study(y[good], m) if good.any() else np.zeros((0, 12 + m), dtype=complex)
+    return X[np.all(np.isfinite(X), axis=1)]

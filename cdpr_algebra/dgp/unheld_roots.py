@@ -53,12 +53,13 @@ def _newton(homotopy, X, residual_tol):
     return x, list(zip(res, cond, upd)), good
 
 
-def settle_on_unheld_roots(homotopy, result, options, residual_tol: float):
+def settle_on_unheld_roots(homotopy, result, options, residual_tol: float, more_estimates=()):
     """(``result`` with its failed paths settled on distinct regular roots that no other path holds (module doc), the
     number of failed paths left).  ``homotopy``: the parameter homotopy whose target is the system at t = 0 (its
     ``n`` unknowns; endpoints in its coordinates); ``options``: the run's SolveOptions (``endgame.cluster_tol``
     decides coincidence, ``duplicate_tol`` the grouping); ``residual_tol``: the largest relative residual of a
-    kept root."""
+    kept root; ``more_estimates``: other points to start Newton's method from (e.g. roots found in other
+    coordinates, :func:`.study_retrack.study_roots`), kept by the same tests."""
     paths = list(result.track.paths)
     failed = [i for i, p in enumerate(paths) if p.status in FAILURES]
     if not failed:
@@ -79,7 +80,7 @@ def settle_on_unheld_roots(homotopy, result, options, residual_tol: float):
             keep(x, inf)
     pairs = [2 * paths[i].endpoint - x for i, x in roots.items()
              if paths[i].status == ENDGAME_FAILED and paths[i].winding_number == 2]
-    Y, info, good = _newton(homotopy, pairs, residual_tol)
+    Y, info, good = _newton(homotopy, pairs + [np.asarray(x, dtype=complex) for x in more_estimates], residual_tol)
     for y, inf, g in zip(Y, info, good):
         if g:
             keep(y, inf)
