@@ -19,6 +19,7 @@ import pytest
 import cdpr_algebra.homotopy.endgame as eg
 import cdpr_algebra.homotopy.dd_tracker as dd
 import cdpr_algebra.homotopy.tracker as tk
+from cdpr_algebra.dgp import study_retrack
 from cdpr_algebra.dgp.solve import STUDY_FIRST, _generic, default_options, solve_taut_set
 from cdpr_algebra.dgp.study_retrack import STUDY_EXTENDED, FastStudySystem
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
@@ -56,6 +57,9 @@ def test_failed_path_is_tracked_in_arbitrary_precision(monkeypatch):
         return np.all(np.isclose(x0, X[0]), axis=1) if x0.shape[1] == X.shape[1] else np.ones(len(x0), bool)
 
     monkeypatch.setattr(eg, "track_segment", _failing_at_the_start(eg.track_segment, first_or_study))
+    # the endgame over double-double (study_retrack._precise_endgames) would settle the Study paths forced to fail:
+    # off, this test is about the rescue of --mpmath-retry
+    monkeypatch.setattr(study_retrack, "PRECISE_ENDGAME_PATHS", 0)
     sub1, _ = solve_taut_set(robot, rho, cables, certify=False, exclude=False)
     assert sub1.failed_paths == 1  # forced: without the retry, the path fails
 

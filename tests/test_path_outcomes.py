@@ -12,6 +12,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+
+from cdpr_algebra.dgp import study_retrack
 import sympy as sp
 
 from cdpr_algebra.homotopy.endgame import EndgameOptions, SolveOptions
@@ -231,6 +233,7 @@ def test_forced_failures_make_the_dgp_incomplete_and_the_cli_exit_3(test1, tmp_p
     monkeypatch.setattr(dgp_mod, "default_options", lambda: tiny)
     monkeypatch.setattr(dgp_mod, "PROJECTIVE_RETRIES", 0)
     monkeypatch.setattr(dgp_mod, "UNHELD_ROOTS", False)  # failed paths stay failed (no Newton from their estimates)
+    monkeypatch.setattr(study_retrack, "PRECISE_ENDGAME_PATHS", 0)  # nor the endgame over double-double
     res = dgp_mod.dgp(test1, jobs=1, max_m=2, certify=False, exclude=False)  # track the sets of no equilibrium too
     two = [s for s in res.subproblems if len(s.taut) == 2]
     assert two and all(not s.complete and s.failed_paths > 0 for s in two)

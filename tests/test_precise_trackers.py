@@ -140,3 +140,37 @@ def test_study_equations_in_double_double_equal_the_double_ones():
         to_complex(Hd, got[2])
         for g, want in zip(got, (F[0], J[0].ravel(), H[0])):
             assert np.abs(g - want).max() <= 1e-12 * (1 + np.abs(want).max())
+
+
+def _toy_homotopies(p0):
+    import sympy as sp
+
+    from cdpr_algebra.homotopy.dd_tracker import DoubleDoubleParameterHomotopy
+    from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
+    from cdpr_algebra.homotopy.systems import PolynomialSystem
+
+    x0, x1, a, b = sp.symbols("x0 x1 a b")
+    system = PolynomialSystem([x0**2 - a, x1 - b * x0], [x0, x1], [a, b], name="toy_sqrt")
+    hom = ParameterHomotopy(system, np.array([4.0, 1.0]), np.array(p0, dtype=float))
+    return hom, DoubleDoubleParameterHomotopy(_toy_dd(), 2, [4, 1], p0)
+
+
+def test_precise_cauchy_endgame_on_a_double_root_and_a_regular_one():
+    """x0^2 = a(t), x1 = b(t) x0 with a(t) = 4 t (a(0) = 0): the paths x0 = +-2 sqrt(t) meet at t = 0, so the loops
+    turn twice and their mean is the double root (0, 0); with a(0) = 9 the limit is the regular root (3, 6) on one
+    sheet.  Known in closed form."""
+    from cdpr_algebra.homotopy.endgame import EndgameOptions
+    from cdpr_algebra.homotopy.precise_endgame import precise_cauchy_endgame
+
+    o, tr = EndgameOptions(), TrackerOptions(predictor_tol=1e-5)
+    hom, precise = _toy_homotopies([0.0, 2.0])
+    t0 = 0.1
+    a, b = 4 * t0, t0 * 1 + (1 - t0) * 2
+    lim = precise_cauchy_endgame(hom, precise, np.array([np.sqrt(a), b * np.sqrt(a)]), t0, o, tr)
+    assert lim.converged and lim.winding == 2 and lim.accuracy <= o.cauchy_tol
+    assert np.abs(lim.x).max() <= 1e-8
+    hom, precise = _toy_homotopies([9.0, 2.0])
+    a = 4 * t0 + 9 * (1 - t0)
+    lim = precise_cauchy_endgame(hom, precise, np.array([np.sqrt(a), b * np.sqrt(a)]), t0, o, tr)
+    assert lim.converged and lim.winding == 1
+    assert np.abs(lim.x - np.array([3, 6])).max() <= 1e-8

@@ -11,6 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from cdpr_algebra.dgp import study_retrack
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -40,6 +42,8 @@ def failing(monkeypatch):
     monkeypatch.setattr(dgp_mod, "PROJECTIVE_RETRIES", 0)
     # and stays failed: Newton from the failed paths' estimates (dgp.unheld_roots) would find the roots
     monkeypatch.setattr(dgp_mod, "UNHELD_ROOTS", False)
+    # and the endgame over double-double (its hybrid tracker goes on in double-double where 3 steps fail)
+    monkeypatch.setattr(study_retrack, "PRECISE_ENDGAME_PATHS", 0)
     return dgp_mod
 
 

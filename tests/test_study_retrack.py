@@ -296,3 +296,27 @@ def test_infinity_coordinate_of_study_points():
     assert not inf.any() and undecided.all()
     inf, undecided, _ = decide_in_chart(real, np.full(3, 1e-10), real, real, o, FastStudySystem.infinity_coordinate)
     assert not inf.any() and not undecided.any()
+
+
+def test_precise_endgame_decides_seed002_paths_at_infinity(monkeypatch):
+    """Seed 002's 8-cable robot, taut set {1, 3, 5, 8}: six Study paths fail in the double endgame near t ~ 1e-4
+    (pairs meeting on N = 0); the endgame over double-double (dgp.study_retrack._precise_endgames) converges on
+    limits with N = 0 (winding number 2) and they are at infinity: the subproblem is complete, its regular endpoints
+    and paths at infinity adding up to the generic count 216.  Without that step the six stay failed."""
+    import cdpr_algebra.dgp.solve as S
+    import cdpr_algebra.dgp.study_retrack as SR
+    from cdpr_algebra.homotopy.results import outcome_counts
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
+    target = S._normalized(robot, robot.lengths, (0, 2, 4, 7))[0]
+    res, failed = S._track(4, target, 0, gamma=False)
+    paths = res.track.paths
+    decided = [p for p in paths if p.retried == SR.PRECISE_ENDGAME]
+    assert failed == 0 and len(decided) == 6
+    assert all(p.status == "at_infinity" and p.winding_number == 2 and p.order > 0 for p in decided)
+    counts = outcome_counts(paths)
+    assert counts["failed"] == 0 and counts["regular"] + counts["at_infinity"] == 216
+    monkeypatch.setattr(SR, "PRECISE_ENDGAME_PATHS", 0)
+    _, failed = S._track(4, target, 0, gamma=False)
+    assert failed == 6

@@ -112,15 +112,19 @@ def test_large_force_robot_returns_its_equilibrium():
     assert sum(sub.outcomes.values()) == sub.paths == 40
 
 
-def test_roots_reached_in_study_parameters_settle_two_failed_paths():
+def test_roots_reached_in_study_parameters_settle_two_failed_paths(monkeypatch):
     """Seed 002's 8-cable robot, taut set {1, 3, 4, 5, 8}: two paths fail near t = 2e-5 where the pose grows without
     bound (N / |e|^2 ~ 3e-7); Newton's method in Study parameters from their last Study points reaches two roots that
     no other path holds (:func:`cdpr_algebra.dgp.study_retrack.study_roots`), and the subproblem is complete.  The
     roots are checked by 50-digit Newton in the taut system (independent of the double-precision refinement), and
-    without the Study step the two paths stay failed."""
+    without the Study step the two paths stay failed.  (The endgame in double-double settles these two paths first,
+    on the same roots: it is switched off here.)"""
     import mpmath
 
     import cdpr_algebra.dgp.solve as S
+    import cdpr_algebra.dgp.study_retrack as SR
+
+    monkeypatch.setattr(SR, "PRECISE_ENDGAME_PATHS", 0)
     from cdpr_algebra.model.robot import load_robot
     from cdpr_algebra.model.taut_equations import taut_family
 
@@ -153,10 +157,32 @@ def test_roots_reached_in_study_parameters_settle_two_failed_paths():
 
 def test_without_the_study_roots_those_paths_stay_failed(monkeypatch):
     import cdpr_algebra.dgp.solve as S
+    import cdpr_algebra.dgp.study_retrack as SR
     from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
     target = S._normalized(robot, robot.lengths, (0, 2, 3, 4, 7))[0]
+    monkeypatch.setattr(SR, "PRECISE_ENDGAME_PATHS", 0)
     monkeypatch.setattr(S, "study_roots", lambda *a: np.zeros((0, 17), dtype=complex))
     res, failed = S._track(5, target, 0, gamma=False)
     assert failed == 2 and sum(p.retried == UNHELD_ROOT for p in res.track.paths) == 0
+
+
+def test_the_endgame_in_double_double_reaches_the_same_two_roots():
+    """The same two paths, with the endgame over double-double on (the default): it ends them on one sheet at the
+    roots that Newton's method in Study parameters reaches (same points to 1e-8 relative)."""
+    import cdpr_algebra.dgp.solve as S
+    import cdpr_algebra.dgp.study_retrack as SR
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
+    target = S._normalized(robot, robot.lengths, (0, 2, 3, 4, 7))[0]
+    res, failed = S._track(5, target, 0, gamma=False)
+    got = [p for p in res.track.paths if p.retried == SR.PRECISE_ENDGAME]
+    assert failed == 0 and len(got) == 2 and all(p.status == "success" for p in got)
+    p_gen = S._generic(5)[0]
+    est = [SR.to_study(p.endpoint[None], 5, SR.study_chart())[0] for p in got]
+    roots = SR.study_roots(5, p_gen, target, est, 40, 1e-10, 1e14)
+    assert len(roots) == 2
+    for p in got:
+        assert min(np.max(np.abs(r - p.endpoint)) for r in roots) <= 1e-8 * np.max(np.abs(p.endpoint))

@@ -212,6 +212,74 @@ def _limit_of_one_sheet(q, o) -> bool:
     return not bool(zero[0])
 
 
+PRECISE_ENDGAME = "precise_endgame"  # the ``retried`` of a path decided by _precise_endgames
+PRECISE_ENDGAME_PATHS = 64  # failed Study paths per run given the endgame with double-double (~0.1-0.3 s each)
+PRECISE_ENDGAME_STEPS = 1500  # its steps in double-double per path (~0.1-0.3 ms each)
+PRECISE_ENDGAME_BUDGET = 10000  # ... and per run
+PRECISE_FLOOR = 1e-16  # the double-double tracker's corrector floor there (dd_tracker.dd_track's corrector_floor)
+
+
+def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) -> list:
+    """The failed Study paths ``spaths`` (from the start points Y1; at most ``PRECISE_ENDGAME_PATHS``, and
+    ``PRECISE_ENDGAME_STEPS`` double-double steps a path, ``PRECISE_ENDGAME_BUDGET`` a run) tracked again to
+    te by :func:`cdpr_algebra.homotopy.hybrid_tracker.hybrid_track` and given the Cauchy endgame over it
+    (:func:`cdpr_algebra.homotopy.precise_endgame.precise_cauchy_endgame`: double precision, double-double where it
+    fails, with the corrector floor ``PRECISE_FLOOR``).  A path whose Cauchy estimates converge (``cauchy_tol``) is
+    decided as the double endgame decides: ``at_infinity`` when N = e . e of the limit vanishes to its accuracy and
+    N(t) ~ t^v (v > 0) at the last two radii (:func:`cdpr_algebra.homotopy.endgame.decide_in_chart` on
+    ``FastStudySystem.infinity_coordinate``), a finite limit on one sheet (winding number 1) is returned as the
+    path's endpoint for the caller's Newton test (``success``); the others keep their outcome.  Returns the paths
+    (``retried = "precise_endgame"`` where decided).
+
+    Why.  Measured (twenty-first session) on seed 002's 8-cable robot: its failed Study paths near t ~ 1e-4 .. 1e-5
+    are ill-conditioned pairs (winding number 2) whose double-precision loops fail before two estimates agree; in
+    double-double with the corrector floor the estimates agree to 1e-10 .. 1e-12 at t ~ 1e-7 on limits with
+    N ~ 1e-16 (order 0.4 .. 0.6), ~0.2 s a path.  With the default floor (2^-86) the double-double steps are
+    rejected there: Newton's updates stop at ~1e-32 times the condition number."""
+    from cdpr_algebra.generated.study_equations_dd import study_equations
+    from cdpr_algebra.homotopy.dd_tracker import DoubleDoubleParameterHomotopy
+    from cdpr_algebra.homotopy.endgame import decide_in_chart
+    from cdpr_algebra.homotopy.hybrid_tracker import hybrid_track
+    from cdpr_algebra.homotopy.precise_endgame import precise_cauchy_endgame
+    from cdpr_algebra.homotopy.start_systems import parameter_homotopy
+
+    spaths = list(spaths)
+    bad = [j for j, q in enumerate(spaths) if q.status in FAILURES][:PRECISE_ENDGAME_PATHS]
+    if not bad:
+        return spaths
+    (hom,) = parameter_homotopy(fast_study_family(m), P1, P0, rng=np.random.default_rng(seed), gamma=gamma)
+    precise = DoubleDoubleParameterHomotopy.like(hom, study_equations, corrector_floor=PRECISE_FLOOR)
+    eo, tr = opts.endgame, opts.tracker
+    te = eo.endgame_start
+    left = PRECISE_ENDGAME_BUDGET
+    for j in bad:
+        if left <= 0:
+            break
+        seg = hybrid_track(hom, precise, Y1[j], 1.0, te, tr, chunk=PRECISE_CHUNK,
+                           max_precise_steps=min(PRECISE_ENDGAME_STEPS, left))
+        left -= seg.precise_steps
+        steps = spaths[j].steps + seg.steps
+        if seg.status != SUCCESS:
+            spaths[j] = replace(spaths[j], steps=steps)
+            continue
+        lim = precise_cauchy_endgame(hom, precise, seg.x, te, eo, tr,
+                                     max_precise_steps=min(PRECISE_ENDGAME_STEPS - seg.precise_steps, left))
+        left -= lim.precise_steps
+        steps += lim.steps
+        spaths[j] = replace(spaths[j], steps=steps)
+        if not lim.converged:
+            continue
+        inf, undecided, order = decide_in_chart(lim.x[None], np.array([lim.accuracy]), lim.xlast[None],
+                                                lim.xprev[None], eo, FastStudySystem.infinity_coordinate)
+        if inf[0]:
+            spaths[j] = replace(spaths[j], status=AT_INFINITY, endpoint=lim.x, t=0j, accuracy=lim.accuracy,
+                                winding_number=lim.winding, order=float(order[0]), retried=PRECISE_ENDGAME)
+        elif not undecided[0] and lim.winding == 1:
+            spaths[j] = replace(spaths[j], status=SUCCESS, endpoint=lim.x, t=0j, accuracy=lim.accuracy,
+                                winding_number=1, retried=PRECISE_ENDGAME)
+    return spaths
+
+
 STUDY_EXTENDED = "study_extended"  # the ``retried`` of a path that the Study run in extended precision rescued
 PRECISE_CHUNK = 500  # steps in double-double before double precision is tried again (hybrid_track)
 PRECISE_STEPS = 30000  # steps in double-double per path (~0.3 ms each, m = 4)
@@ -291,6 +359,8 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
         sres = solve_parameter_homotopy(fast_study_family(m), P1, Y1, P0, seed=seed, options=opts, gamma=gamma,
                                         retries=0)
         spaths = sres.track.paths
+        if PRECISE_ENDGAME_PATHS:
+            spaths = _precise_endgames(m, spaths, Y1, P1, P0, seed, gamma, opts)
     ok = [j for j, q in enumerate(spaths) if q.status == SUCCESS or _limit_of_one_sheet(q, opts.endgame)]
     ends = {j: spaths[j].endpoint for j in ok}
     precise = {}
@@ -325,7 +395,7 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
         if q.status == AT_INFINITY:
             i = failed[j]
             paths[i] = replace(paths[i], status=AT_INFINITY, steps=paths[i].steps + q.steps,  # its last point kept
-                               winding_number=q.winding_number, order=q.order, retried="study")
+                               winding_number=q.winding_number, order=q.order, retried=q.retried or "study")
             rescued += 1
             done.add(j)
     for j, q in enumerate(spaths):  # the others keep their outcome; their steps include the Study run's

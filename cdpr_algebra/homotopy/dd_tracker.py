@@ -150,8 +150,9 @@ def _newton(fe, x, t, p1, p0, g, P, DP, F, Jm, Ht, A, rhs, u) -> float:
 
 @nb.njit(**_J)
 def dd_track_kernel(fe, x0, neq, p1, p0, g, ta, tb, predictor_tol, max_contraction, step_safety, min_step,
-                    max_steps, initial_step, start_newton, X):
+                    max_steps, initial_step, start_newton, X, tol_c):
     """Track x0 (complex, a solution at t_a) to t_b (module doc); the last point reached in X (n, 4) double-double.
+    ``tol_c``: the Newton update (relative) below which a step's last updates need not contract further.
     Returns (status code: 0 success, 1 too_many_steps, 2 step_too_small; steps; s reached in [0, 1])."""
     n = x0.shape[0]
     P = np.zeros((p1.shape[0], 4))
@@ -170,7 +171,6 @@ def dd_track_kernel(fe, x0, neq, p1, p0, g, ta, tb, predictor_tol, max_contracti
     xc = np.zeros((n, 4))
     to_dd(x0, X)
     dt = tb - ta
-    tol_c = 2.0 ** -86
     for _ in range(start_newton):  # the start point onto the path at this precision
         d = _newton(fe, X, ta, p1, p0, g, P, DP, F, Jm, Ht, A, rhs, u)
         if not d > tol_c:
@@ -222,11 +222,16 @@ def dd_track_kernel(fe, x0, neq, p1, p0, g, ta, tb, predictor_tol, max_contracti
     return 0, steps, 1.0
 
 
+CORRECTOR_FLOOR = 2.0 ** -86  # dd_track's default tol_c: Newton contracts to the last bits of double-double
+
+
 def dd_track(evaluator, neq: int, p1, p0, gamma, x0, t_a, t_b, options, max_steps: int = 1000,
-             initial_step: float | None = None, start_newton: int = 8):
+             initial_step: float | None = None, start_newton: int = 8, corrector_floor: float = CORRECTOR_FLOOR):
     """:func:`dd_track_kernel` for one path with a :class:`.tracker.TrackerOptions` ``options``: returns
     (x complex, t reached, status, steps).  ``evaluator``: a rewritten generated evaluator compiled with
-    :data:`EQUATIONS_SIG`; ``gamma`` None for a straight segment."""
+    :data:`EQUATIONS_SIG`; ``gamma`` None for a straight segment; ``corrector_floor``: the kernel's ``tol_c``
+    (a larger one, e.g. 1e-16, accepts steps whose Newton updates stop at the round-off floor of double-double
+    times the condition number: near a singular limit, condition numbers of 1e10 and more)."""
     from .compiled import function_address
 
     x0 = np.ascontiguousarray(x0, dtype=complex)
@@ -238,7 +243,7 @@ def dd_track(evaluator, neq: int, p1, p0, gamma, x0, t_a, t_b, options, max_step
                                      g, complex(t_a), complex(t_b), float(o.predictor_tol), float(o.max_contraction),
                                      float(o.step_safety), float(o.min_step), int(max_steps),
                                      float(o.initial_step if initial_step is None else initial_step), int(start_newton),
-                                     X)
+                                     X, float(corrector_floor))
     x = np.empty(len(x0), dtype=complex)
     to_complex(X, x)
     t = complex(t_b) if code == 0 else complex(t_a) + s * (complex(t_b) - complex(t_a))
@@ -250,20 +255,21 @@ class DoubleDoubleParameterHomotopy:
     double-double evaluator (:data:`EQUATIONS_SIG`), tracked by :func:`dd_track` (the interface of
     :func:`.hybrid_tracker.hybrid_track`)."""
 
-    def __init__(self, evaluator, neq: int, p1, p0, gamma=None):
+    def __init__(self, evaluator, neq: int, p1, p0, gamma=None, corrector_floor: float = CORRECTOR_FLOOR):
         self.evaluator, self.neq = evaluator, int(neq)
+        self.corrector_floor = float(corrector_floor)
         self.p1 = np.ascontiguousarray(p1, dtype=complex)
         self.p0 = np.ascontiguousarray(p0, dtype=complex)
         self.gamma = None if gamma is None else complex(gamma)
 
     @classmethod
-    def like(cls, homotopy, evaluator) -> "DoubleDoubleParameterHomotopy":
-        return cls(evaluator, homotopy.neq, homotopy.p1, homotopy.p0, homotopy.gamma)
+    def like(cls, homotopy, evaluator, corrector_floor: float = CORRECTOR_FLOOR) -> "DoubleDoubleParameterHomotopy":
+        return cls(evaluator, homotopy.neq, homotopy.p1, homotopy.p0, homotopy.gamma, corrector_floor)
 
     def track(self, x0, t_a, t_b, options, max_steps: int, initial_step: float | None = None):
         """:func:`dd_track` from x0 at t_a to t_b: a :class:`.hybrid_tracker.PreciseSegment`."""
         from .hybrid_tracker import PreciseSegment
 
         x, t, status, steps = dd_track(self.evaluator, self.neq, self.p1, self.p0, self.gamma, x0, t_a, t_b, options,
-                                       max_steps, initial_step)
+                                       max_steps, initial_step, corrector_floor=self.corrector_floor)
         return PreciseSegment(x=x, t=t, status=status, steps=steps)
