@@ -13,7 +13,9 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   Euler parameters on a chart, where the near-isotropic complex rotations that ruin the conditioning of
   (p, u, v, w, lam) are ordinary points; a path is kept there when its endpoint, mapped back, is a Newton-quadratic
   root of the taut system distinct from every other, or at infinity when its limit lies on N = e . e = 0; the run
-  makes detours around phase-1 failures, since it holds every path), then the paths it leaves undecided in the
+  makes detours around phase-1 failures, since it holds every path, and gives its paths that failed in the endgame
+  zone a Cauchy endgame over double-double, :func:`.study_retrack._precise_endgames`), then the paths it leaves
+  undecided in the
   taut system along the same parameter path with that engine's own retries (below; no detours: they need every
   path of the run) (retried ``taut``).  Measured (nineteenth session, 2 cores, against the taut system first with
   failed paths re-tracked in Study parameters, ``python -m benchmarks.bench_against 3412981 --tests
