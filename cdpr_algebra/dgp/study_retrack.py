@@ -240,6 +240,12 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
     seed 000 Test 3 its three (crawls at t ~ 0.3-0.4) cost 0.8 s serial in double-double, which the taut system or a
     re-run with a new gamma settles anyway; on seed 002 it decided 4 of 9 such paths, against 88 of 135 in the
     endgame zone."""
+    spaths = list(spaths)
+    eo, tr = opts.endgame, opts.tracker
+    te = eo.endgame_start
+    bad = [j for j, q in enumerate(spaths) if q.status in FAILURES and abs(q.t) <= te][:PRECISE_ENDGAME_PATHS]
+    if not bad:  # nothing to load (the double-double kernels cost ~8 MiB)
+        return spaths
     from cdpr_algebra.generated.study_equations_dd import study_equations
     from cdpr_algebra.homotopy.dd_tracker import DoubleDoubleParameterHomotopy
     from cdpr_algebra.homotopy.endgame import decide_in_chart
@@ -247,12 +253,6 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
     from cdpr_algebra.homotopy.precise_endgame import precise_cauchy_endgame
     from cdpr_algebra.homotopy.start_systems import parameter_homotopy
 
-    spaths = list(spaths)
-    eo, tr = opts.endgame, opts.tracker
-    te = eo.endgame_start
-    bad = [j for j, q in enumerate(spaths) if q.status in FAILURES and abs(q.t) <= te][:PRECISE_ENDGAME_PATHS]
-    if not bad:
-        return spaths
     (hom,) = parameter_homotopy(fast_study_family(m), P1, P0, rng=np.random.default_rng(seed), gamma=gamma)
     precise = DoubleDoubleParameterHomotopy.like(hom, study_equations, corrector_floor=PRECISE_FLOOR)
     left = PRECISE_ENDGAME_BUDGET
