@@ -182,7 +182,7 @@ def test_the_endgame_in_double_double_reaches_the_same_two_roots():
     assert failed == 0 and len(got) == 2 and all(p.status == "success" for p in got)
     p_gen = S._generic(5)[0]
     est = [SR.to_study(p.endpoint[None], 5, SR.study_chart())[0] for p in got]
-    roots = SR.study_roots(5, p_gen, target, est, 40, 1e-10, 1e14)
+    roots = SR.study_roots(5, p_gen, target, est)
     assert len(roots) == 2
     for p in got:
         assert min(np.max(np.abs(r - p.endpoint)) for r in roots) <= 1e-8 * np.max(np.abs(p.endpoint))

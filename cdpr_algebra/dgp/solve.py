@@ -117,7 +117,7 @@ from cdpr_algebra.model.taut_equations import decode, from_cable_frame, to_cable
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .one_cable import one_cable_equilibria
 from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, study_roots, track_study_first
-from .unheld_roots import MAX_CONDITION, NEWTON_STEPS, SETTLED, settle_on_unheld_roots
+from .unheld_roots import settle_on_unheld_roots
 from .taut_system import FastTautSystem, fast_family
 from cdpr_algebra.homotopy.results import AT_INFINITY, ENDGAME_FAILED, FAILURES, OUTCOMES, outcome_counts
 from cdpr_algebra.report.jsonable import jsonable
@@ -456,7 +456,7 @@ def _track(m, target, seed, gamma, options=None):
         from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
 
         left = [i for i, p in enumerate(res.track.paths) if p.status in FAILURES and i in estimates]
-        more = study_roots(m, p_gen, target, [estimates[i] for i in left], NEWTON_STEPS, SETTLED, MAX_CONDITION)
+        more = study_roots(m, p_gen, target, [estimates[i] for i in left])
         res, _ = settle_on_unheld_roots(ParameterHomotopy(fast_family(m), p_gen, target), res, options, RESIDUAL_TOL,
                                         more)
     return res, sum(1 for p in res.track.paths if p.status in FAILURES)

@@ -195,6 +195,24 @@ def _study_options(options, detours: bool = False):
                    tracker=replace(base.tracker, extended_residual=EXTENDED))
 
 
+def _study_parameters(start_parameters, target) -> tuple:
+    """(P1, P0): the start and target parameters of the Study family, the chart of e appended to both."""
+    chart = study_chart()
+    return (np.concatenate([start_parameters, chart]), np.concatenate([np.asarray(target, dtype=complex), chart]))
+
+
+def _study_homotopy_and_twin(m: int, P1, P0, seed: int, gamma: bool, **floor):
+    """The Study run's parameter homotopy from P1 to P0 (drawn again from ``seed`` and ``gamma`` as
+    :func:`cdpr_algebra.homotopy.solve.solve_parameter_homotopy` drew it) and its double-double twin over the generated
+    :mod:`cdpr_algebra.generated.study_equations_dd` (``floor``: its ``corrector_floor``, when given)."""
+    from cdpr_algebra.generated.study_equations_dd import study_equations
+    from cdpr_algebra.homotopy.dd_tracker import DoubleDoubleParameterHomotopy
+    from cdpr_algebra.homotopy.start_systems import parameter_homotopy
+
+    (hom,) = parameter_homotopy(fast_study_family(m), P1, P0, rng=np.random.default_rng(seed), gamma=gamma)
+    return hom, DoubleDoubleParameterHomotopy.like(hom, study_equations, **floor)
+
+
 def _limit_of_one_sheet(q, o) -> bool:
     """A Study path ``q`` that the endgame (options ``o``) ended ``singular`` only by its condition number: its Cauchy
     estimate converged on one sheet (winding number 1, accuracy within ``DECENT_ACCURACY``) to a point that solves
@@ -246,15 +264,11 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
     bad = [j for j, q in enumerate(spaths) if q.status in FAILURES and abs(q.t) <= te][:PRECISE_ENDGAME_PATHS]
     if not bad:  # nothing to load (the double-double kernels cost ~8 MiB)
         return spaths
-    from cdpr_algebra.generated.study_equations_dd import study_equations
-    from cdpr_algebra.homotopy.dd_tracker import DoubleDoubleParameterHomotopy
     from cdpr_algebra.homotopy.endgame import decide_in_chart
     from cdpr_algebra.homotopy.hybrid_tracker import hybrid_track
     from cdpr_algebra.homotopy.precise_endgame import precise_cauchy_endgame
-    from cdpr_algebra.homotopy.start_systems import parameter_homotopy
 
-    (hom,) = parameter_homotopy(fast_study_family(m), P1, P0, rng=np.random.default_rng(seed), gamma=gamma)
-    precise = DoubleDoubleParameterHomotopy.like(hom, study_equations, corrector_floor=PRECISE_FLOOR)
+    hom, precise = _study_homotopy_and_twin(m, P1, P0, seed, gamma, corrector_floor=PRECISE_FLOOR)
     left = PRECISE_ENDGAME_BUDGET
     for j in bad:
         if left <= 0:
@@ -298,17 +312,13 @@ def _rescue_in_extended_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: 
     on to t = 0 (no endgame: a path that does not reach a regular point there stays failed).  Returns {path: (Study
     endpoint, steps)} for the paths that reach a point where Newton's method in the Study system converges
     quadratically with a condition number at most the endgame's ``singular_condition``."""
-    from cdpr_algebra.generated.study_equations_dd import study_equations
-    from cdpr_algebra.homotopy.dd_tracker import DoubleDoubleParameterHomotopy
     from cdpr_algebra.homotopy.refinement import refine
     from cdpr_algebra.homotopy.hybrid_tracker import hybrid_track
-    from cdpr_algebra.homotopy.start_systems import parameter_homotopy
 
     bad = [j for j, q in enumerate(spaths) if q.status in FAILURES][:max_paths]
     if not bad:
         return {}
-    (hom,) = parameter_homotopy(fast_study_family(m), P1, P0, rng=np.random.default_rng(seed), gamma=gamma)
-    precise = DoubleDoubleParameterHomotopy.like(hom, study_equations)
+    hom, precise = _study_homotopy_and_twin(m, P1, P0, seed, gamma)
     te, tr = opts.endgame.endgame_start, opts.tracker
     out = {}
     for j in bad:
@@ -355,8 +365,7 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     X1 = np.asarray(start_solutions, dtype=complex)[failed]  # path k starts at start solution k
     Y1 = to_study(X1, m, chart)
     opts = _study_options(options, detours)
-    P1 = np.concatenate([start_parameters, chart])
-    P0 = np.concatenate([np.asarray(target, dtype=complex), chart])
+    P1, P0 = _study_parameters(start_parameters, target)
     if failed_in_study:  # placeholders: every one of them failed (and goes to the rescue below)
         spaths = tuple(replace(paths[i], index=j, endpoint=y, steps=0) for j, (i, y) in enumerate(zip(failed, Y1)))
     else:
@@ -482,11 +491,12 @@ def track_study_first(system, m: int, start_parameters, start_solutions, target,
     return replace(template, track=track, solutions=sols)
 
 
-def study_roots(m: int, start_parameters, target, estimates, newton_steps: int, settled: float, max_condition: float):
-    """Roots of the equations in Study parameters at the ``target`` (t = 0) reached by Newton's method (residuals in
-    double-double, at most ``newton_steps`` iterations) from the Study points ``estimates`` (a failed path's last
-    point), in taut coordinates: those where Newton converges quadratically to a last update <= ``settled`` with a
-    condition number <= ``max_condition``, at a pose (N = e . e nonzero beyond that update: not a point at infinity).
+def study_roots(m: int, start_parameters, target, estimates):
+    """Roots of the equations in Study parameters at the ``target`` (t = 0) reached by Newton's method from the Study
+    points ``estimates`` (a failed path's last point), in taut coordinates: those that
+    :func:`.unheld_roots.newton_roots` accepts in Study parameters (quadratic, last update <= ``SETTLED``, condition
+    <= ``MAX_CONDITION``; no residual test there), at a pose (N = e . e nonzero beyond that update: not a point at
+    infinity).
 
     Why.  A path of the taut system whose pose grows without bound on the way (N / |e|^2 ~ 1e-7, |R| ~ 1e6) is
     ill-conditioned in both coordinates near t = 0, and its tracking fails there; Newton's method in the taut system
@@ -496,17 +506,16 @@ def study_roots(m: int, start_parameters, target, estimates, newton_steps: int, 
     1e14 in the taut system, |x| = 2.4e6 there), confirmed by Newton's method at 60 digits.
     The caller keeps a root only as :func:`.unheld_roots.settle_on_unheld_roots` keeps any."""
     from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
-    from cdpr_algebra.homotopy.refinement import refine
+
+    from .unheld_roots import newton_roots
 
     Y = np.asarray(list(estimates), dtype=complex).reshape(-1, 8 + m)
     if not len(Y):
         return np.zeros((0, 12 + m), dtype=complex)
-    chart = study_chart()
-    hom = ParameterHomotopy(fast_study_family(m), np.concatenate([start_parameters, chart]),
-                            np.concatenate([np.asarray(target, dtype=complex), chart]))
+    hom = ParameterHomotopy(fast_study_family(m), *_study_parameters(start_parameters, target))
+    y, info, good = newton_roots(hom, Y, np.inf)
     with np.errstate(all="ignore"):
-        y, upd, _, cond, quad = refine(hom, Y, 0.0, max_iter=newton_steps)
-        pose = np.abs(FastStudySystem.infinity_coordinate(y)) > 1e3 * np.maximum(upd, 1e-16)
-        good = quad & (upd <= settled) & (cond <= max_condition) & pose & np.all(np.isfinite(y), axis=1)
+        upd = np.array([u for _, _, u in info])
+        good &= np.abs(FastStudySystem.infinity_coordinate(y)) > 1e3 * np.maximum(upd, 1e-16)  # a pose
         X = from_study(y[good], m) if good.any() else np.zeros((0, 12 + m), dtype=complex)
     return X[np.all(np.isfinite(X), axis=1)]

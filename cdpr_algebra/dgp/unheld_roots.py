@@ -30,7 +30,7 @@ from cdpr_algebra.homotopy.refinement import refine
 from cdpr_algebra.homotopy.results import ENDGAME_FAILED, FAILURES, SINGULAR, SUCCESS
 from cdpr_algebra.homotopy.solve import group_solutions
 
-__all__ = ["MAX_CONDITION", "NEWTON_STEPS", "SETTLED", "UNHELD_ROOT", "settle_on_unheld_roots"]
+__all__ = ["MAX_CONDITION", "NEWTON_STEPS", "SETTLED", "UNHELD_ROOT", "newton_roots", "settle_on_unheld_roots"]
 
 NEWTON_STEPS = 40  # Newton iterations from an estimate (ill-conditioned roots converge slowly from afar)
 SETTLED = 1e-10  # the last Newton update (relative) of a kept root
@@ -41,9 +41,10 @@ MAX_CONDITION = 1e14
 UNHELD_ROOT = "unheld_root"  # the ``retried`` of a failed path settled by this module
 
 
-def _newton(homotopy, X, residual_tol):
-    """Rows X refined at t = 0: (points, their (residual, condition, last update), mask of Newton-quadratic finite
-    roots with a last update <= ``SETTLED``, condition number <= ``MAX_CONDITION`` and residual <= tol)."""
+def newton_roots(homotopy, X, residual_tol):
+    """Rows X refined at t = 0 (at most ``NEWTON_STEPS`` iterations): (points, their (residual, condition, last
+    update), mask of Newton-quadratic finite roots with a last update <= ``SETTLED``, condition number <=
+    ``MAX_CONDITION`` and residual <= tol)."""
     X = np.asarray(X, dtype=complex).reshape(-1, homotopy.n)
     if not len(X):
         return X, [], np.zeros(0, dtype=bool)
@@ -73,14 +74,14 @@ def settle_on_unheld_roots(homotopy, result, options, residual_tol: float, more_
             found.append((x, info))
 
     starts = [i for i in failed if np.all(np.isfinite(paths[i].endpoint))]
-    X, info, good = _newton(homotopy, [paths[i].endpoint for i in starts], residual_tol)
+    X, info, good = newton_roots(homotopy, [paths[i].endpoint for i in starts], residual_tol)
     roots = {i: x for i, x, g in zip(starts, X, good) if g}
     for x, inf, g in zip(X, info, good):
         if g:
             keep(x, inf)
     pairs = [2 * paths[i].endpoint - x for i, x in roots.items()
              if paths[i].status == ENDGAME_FAILED and paths[i].winding_number == 2]
-    Y, info, good = _newton(homotopy, pairs + [np.asarray(x, dtype=complex) for x in more_estimates], residual_tol)
+    Y, info, good = newton_roots(homotopy, pairs + [np.asarray(x, dtype=complex) for x in more_estimates], residual_tol)
     for y, inf, g in zip(Y, info, good):
         if g:
             keep(y, inf)
