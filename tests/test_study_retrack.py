@@ -298,6 +298,28 @@ def test_infinity_coordinate_of_study_points():
     assert not inf.any() and not undecided.any()
 
 
+def test_order_at_infinity_is_read_against_the_winding_number():
+    """On a path of winding number c the coordinate is a power series in t^(1 / c): a zero has order k / c, k >= 1.
+    Samples shrinking like t^(1/8) show a zero on a path of winding number 8 (or of unknown winding number: only
+    ``min_order`` applies), not on one of winding number 1 (undecided: a large finite limit not yet settled)."""
+    from cdpr_algebra.dgp.study_retrack import FastStudySystem
+    from cdpr_algebra.homotopy.endgame import EndgameOptions, decide_in_chart
+
+    iso = np.zeros((3, 11), dtype=complex)
+    iso[:, :4] = [1.0, 1j, 0.5, 0.5j]
+    iso[:, 4:] = 0.3
+    o = EndgameOptions()
+    last, prev = iso.copy(), iso.copy()
+    last[:, 0] += 1e-4
+    prev[:, 0] += 1e-4 * 4 ** 0.125  # ratio of the radii 1/4: order 1/8
+    f = FastStudySystem.infinity_coordinate
+    acc = np.full(3, 1e-10)
+    inf, undecided, order = decide_in_chart(iso, acc, last, prev, o, f)
+    assert inf.all() and np.allclose(order, 0.125, atol=0.005)
+    inf, undecided, _ = decide_in_chart(iso, acc, last, prev, o, f, winding=[8, 1, 2])
+    assert inf.tolist() == [True, False, False] and undecided.tolist() == [False, True, True]
+
+
 def test_precise_endgame_decides_seed002_paths_at_infinity(monkeypatch):
     """Seed 002's 8-cable robot, taut set {1, 3, 5, 8}: six Study paths fail in the double endgame near t ~ 1e-4
     (pairs meeting on N = 0); the endgame over double-double (dgp.study_retrack._precise_endgames) converges on

@@ -288,7 +288,8 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
         if not lim.converged:
             continue
         inf, undecided, order = decide_in_chart(lim.x[None], np.array([lim.accuracy]), lim.xlast[None],
-                                                lim.xprev[None], eo, FastStudySystem.infinity_coordinate)
+                                                lim.xprev[None], eo, FastStudySystem.infinity_coordinate,
+                                                [lim.winding])
         if inf[0]:
             spaths[j] = replace(spaths[j], status=AT_INFINITY, endpoint=lim.x, t=0j, accuracy=lim.accuracy,
                                 winding_number=lim.winding, order=float(order[0]), retried=PRECISE_ENDGAME)
