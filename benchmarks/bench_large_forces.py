@@ -8,8 +8,9 @@ For every (m, K, seed) the taut set of all m cables is solved (``dgp.solve.solve
 counted as
 
 * **found**: the equilibrium is returned (pose within 1e-6 of the robot's size, tensions to 1e-6 relative), either
-  as constructed or as the root of the system actually solved, whose parameters are rounded to doubles (60-digit
-  Newton from the constructed point: with condition numbers ~1e11 the two differ by ~1e-6 in the tensions), and of
+  as constructed, as the root of the system actually solved, whose parameters are rounded to doubles, or as the
+  root of the robot's own system, which the certificates prove (60-digit Newton from the constructed point: with
+  condition numbers ~1e11 the three differ by ~1e-6 .. 1e-5 in the tensions), and of
   these how many carry a certificate (existence, uniqueness, tension signs and slack cables proven);
 * **flagged**: not returned, and the subproblem says it is incomplete (failed paths or uncertified endpoints);
 * **missed**: not returned although the subproblem says complete.  For these the equilibrium is confirmed to be
@@ -35,7 +36,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 def main(argv=None):
     from cdpr_algebra.dgp.solve import default_options, solve_taut_set
-    from large_forces import large_force_robot, matches, root_of_the_solved_system
+    from large_forces import large_force_robot, matches, root_of_the_robot_system, root_of_the_solved_system
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--m", type=int, nargs="+", default=[3, 4, 5, 6])
@@ -55,8 +56,10 @@ def main(argv=None):
                 robot, p, R, tau = large_force_robot(m, K, seed + 10 * m)
                 cables = tuple(range(m))
                 sub, sols = solve_taut_set(robot, robot.lengths, cables, options=options)
-                root = root_of_the_solved_system(robot, cables, p, R, tau)
-                want = [(p, R, tau)] + ([root] if root is not None else [])
+                roots = [root_of_the_solved_system(robot, cables, p, R, tau),
+                         root_of_the_robot_system(robot, cables, p, R, tau)]
+                root = roots[0]
+                want = [(p, R, tau)] + [r for r in roots if r is not None]
                 hits = [s for s in sols if any(matches(s, *w, robot.size) for w in want)]
                 found = bool(hits)
                 certified += any(s.certificate is not None and s.certificate.certified for s in hits)

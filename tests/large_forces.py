@@ -147,6 +147,36 @@ def root_of_the_solved_system(robot, cables, p, R, tau, dps: int = 60):
     return None
 
 
+def root_of_the_robot_system(robot, cables, p, R, tau, dps: int = 60):
+    """The root, in world coordinates (p, R, tau), of the robot's own DGP system (its data as the doubles of the
+    robot: the system that the certificates prove roots of) nearest the constructed equilibrium: 60-digit Newton from
+    it; None when Newton does not converge (updates below 1e-40).  It differs from the constructed equilibrium (whose
+    lengths were rounded to doubles) and from :func:`root_of_the_solved_system` (whose parameters were normalized and
+    rounded) by up to ~1e-5 (relative) in the tensions at condition numbers ~1e11."""
+    import mpmath
+
+    from cdpr_algebra.model.taut_equations import decode, encode, taut_family
+
+    m = len(cables)
+    idx = list(cables)
+    rho = robot.lengths
+    mp = mpmath.mpf
+    with mpmath.workdps(dps):
+        params = ([mp(float(v)) for v in robot.base[idx].ravel()] + [mp(float(rho[i])) ** 2 for i in idx]
+                  + [mp(float(v)) for v in robot.platform[idx].ravel()] + [mp(float(v)) for v in robot.com]
+                  + [mp(float(robot.load)) * mp(float(v)) for v in robot.load_direction])
+        x0 = encode(p, R, tau / rho[idx])
+        F, J, _ = taut_family(m).mp_functions()
+        x = mpmath.matrix([mpmath.mpc(complex(v)) for v in x0])
+        for _ in range(40):
+            d = mpmath.lu_solve(J(list(x), params), -F(list(x), params))
+            x = x + d
+            if mpmath.norm(d) < mpmath.mpf(10) ** -40:
+                pw, Rw, lam = decode(np.array([[complex(v) for v in x]]), m)
+                return pw[0].real, Rw[0].real, lam[0].real * rho[idx]
+    return None
+
+
 def matches(s, p, R, tau, size) -> bool:
     """The DGP solution s is the equilibrium (p, R, tau): pose within 1e-6 (of the robot's size), tensions 1e-6
     relative."""

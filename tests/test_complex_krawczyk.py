@@ -99,12 +99,17 @@ def test_dgp_duplicate_endpoint_is_not_complete(test1):
     assert ok.complete and ok.certified == len(Z)
     assert not bad.complete and bad.certified == len(Z) - 1
     assert sum(bad.uncertified.values()) == 2 and "not proven distinct" in next(iter(bad.uncertified))
-    # a root moved off the solution set: not certified
+    # a root moved off the solution set (beyond BALL_MAX_MOVE): not certified
     Zoff = Z.copy()
-    Zoff[3, 0] += 1e-3 * test1.size
+    Zoff[3, 0] += 3e-2 * test1.size
     (off,) = D._with_endpoint_certificates(test1, test1.lengths, [((0, 1, 2), sub, Zoff)])
     assert not off.complete and off.certified == len(Z) - 1
     assert "incomplete" not in D.incompleteness(off) and "not certified" in D.incompleteness(off)
+    # moved by less: the root near it is proven (ball arithmetic), distinct from the others: complete
+    Znear = Z.copy()
+    Znear[3, 0] += 1e-5 * test1.size
+    (near,) = D._with_endpoint_certificates(test1, test1.lengths, [((0, 1, 2), sub, Znear)])
+    assert near.complete and near.certified == len(Z)
 
 
 def test_ill_conditioned_roots_need_balls():
@@ -134,6 +139,9 @@ def test_ill_conditioned_roots_need_balls():
     # a point that is no root within the width limit is refused in balls too
     bad = certify_complex_root_balls(lambda z, jac: f(z, None, jac), np.array([1 + 1e-3]), np.ones(1))
     assert not bad[0] and "moves the root" in bad[5]
+    # allowed to move that far (a root of a nearby system, e.g. with rounded parameters): the nearest root is proven
+    far = certify_complex_root_balls(lambda z, jac: f(z, None, jac), np.array([1 + 1e-3]), np.ones(1), max_move=1e-2)
+    assert far[0] and arb(far[1][0]) <= arb(exact[0, 0].real) <= arb(far[2][0])
 
 
 def test_dgp_roots_proven_in_balls_are_enclosed_to_double_precision(monkeypatch):

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from cdpr_algebra.dgp.solve import solve_taut_set
-from large_forces import large_force_robot, matches, root_of_the_solved_system
+from large_forces import large_force_robot, matches, root_of_the_robot_system, root_of_the_solved_system
 
 CASES = [(3, 1e2), (3, 1e4), (3, 1e6), (6, 1e2), (6, 1e4), (6, 1e6),
          pytest.param(4, 1e2, marks=pytest.mark.slow), pytest.param(4, 1e6, marks=pytest.mark.slow),
@@ -33,14 +33,35 @@ def test_large_internal_forces_are_found_or_flagged(m, K):
     sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(m)), certify=False)
     assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
     # the equilibrium as constructed, or as the root of the system solved (its data rounded to doubles: with
-    # condition numbers ~1e13 the two differ by ~1e-3)
-    root = root_of_the_solved_system(robot, tuple(range(m)), p, R, tau)
-    want = [(p, R, tau)] + ([root] if root is not None else [])
+    # condition numbers ~1e13 the two differ by ~1e-3), or of the robot's own system
+    roots = [root_of_the_solved_system(robot, tuple(range(m)), p, R, tau),
+             root_of_the_robot_system(robot, tuple(range(m)), p, R, tau)]
+    want = [(p, R, tau)] + [r for r in roots if r is not None]
     found = len([s for s in sols if any(matches(s, *w, robot.size) for w in want)]) == 1
     # flagged: failed paths, or regular endpoints not proven roots
     assert found or not sub.complete, (sub.outcomes, [s.position for s in sols])
     if sub.complete:
         assert found
+
+
+def test_ill_conditioned_equilibrium_is_polished_to_the_robots_root_and_certified():
+    """m = 6, K = 1e3 (condition ~1e11): the homotopy solves the normalized system, whose parameters are rounded to
+    doubles; its root differs from the robot's own by ~2e-5 in the tensions, beyond the box width limit (1e-6) of a
+    certificate.  The endpoint certificates move it (ball arithmetic) and so does the equilibrium's certificate
+    (polished_taut_root): the subproblem is complete (every endpoint proven, boxes disjoint) and the equilibrium
+    returned is the robot's root (60-digit Newton), certified, with the move recorded."""
+    m = 6
+    robot, p, R, tau = large_force_robot(m, 1e3, 360)
+    cables = tuple(range(m))
+    sub, sols = solve_taut_set(robot, robot.lengths, cables, certify=True)
+    solved = root_of_the_solved_system(robot, cables, p, R, tau)
+    own = root_of_the_robot_system(robot, cables, p, R, tau)
+    assert solved is not None and own is not None
+    assert np.max(np.abs(solved[2] - own[2]) / own[2]) > 1e-6  # the two systems' roots are that far apart
+    assert sub.complete and sub.certified == sub.outcomes["regular"] == sub.generic_count
+    (s,) = [s for s in sols if matches(s, *own, robot.size)]
+    assert s.certificate.certified and s.certificate.extra["polished"] > 1e-6
+    assert not matches(s, *solved, robot.size)
 
 
 def test_moderate_internal_forces_are_found():

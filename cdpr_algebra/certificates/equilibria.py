@@ -390,7 +390,7 @@ def certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_
 
 RETRY_PREC = 128  # bits of the second attempt of certify_taut_root and of polished_taut_root
 REFINE_STEPS = 8  # Newton steps in ball arithmetic
-POLISH_RTOL = 1e-6  # largest move of polished_taut_root, relative to the scale of each unknown (_scales)
+POLISH_RTOL = 1e-3  # largest move of polished_taut_root, relative to the scale of each unknown (_scales): as BALL_MAX_MOVE
 
 
 def polished_taut_root(robot, lengths, cables, position, rotation, tensions, max_move: float = POLISH_RTOL):
@@ -639,6 +639,13 @@ BALL_RETRY_MAX = 400  # roots per group (taut set) retried in ball arithmetic (m
 BALL_PREC = 256  # bits: the constants, and the last attempt of the ball retry
 BALL_PRECS = (128, BALL_PREC)  # the ball retry's attempts (the first suffices for condition numbers up to ~1e25)
 FLINT = threading.RLock()  # python-flint's working precision is global to the process: one thread at a time uses it
+# How far (relative to the scale) the ball retry's Newton steps may move an endpoint before its box is built.  The
+# homotopy solves the robot's equations with normalized parameters rounded to doubles; a root of condition number
+# kappa moves by ~kappa x 1e-16 between the two systems (measured: 1e-6 .. 1e-5 in the tensions of
+# tests/large_forces.py's robots at kappa ~ 1e11), beyond the box width limit.  The proof is of a root of the robot's
+# own equations near the endpoint; what it serves (distinct proven roots counted against the generic count, boxes
+# pairwise disjoint) does not depend on the size of the move.
+BALL_MAX_MOVE = 1e-3
 
 
 def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry, frame=None, group=None):
@@ -685,7 +692,8 @@ def _ball_proofs(robot, rho, rows, Z, scale, todo, proven, lo, hi, real, nonreal
                 return taut_system(x, A, b, g, f, rho2, jacobian=jac)
 
             for prec in BALL_PRECS:  # the constants stay exact (BALL_PREC); arithmetic at prec rounds outward
-                ok, lk, hk, rk, nk, why = certify_complex_root_balls(system, Z[k], scale, prec=prec)
+                ok, lk, hk, rk, nk, why = certify_complex_root_balls(system, Z[k], scale, prec=prec,
+                                                                     max_move=BALL_MAX_MOVE)
                 if ok:
                     break
             if ok:

@@ -280,7 +280,8 @@ def overlapping(lo, hi) -> np.ndarray:
 
 
 def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width: float = 1e-6,
-                               real_rtol: float = 1e-8, newton_steps: int = 40, max_iter: int = 10):
+                               real_rtol: float = 1e-8, newton_steps: int = 40, max_iter: int = 10,
+                               max_move: float | None = None):
     """The Krawczyk test of :func:`certify_complex_roots` for one root, in complex ball arithmetic at ``prec`` bits
     (python-flint acb): for roots too ill-conditioned for double precision (condition numbers beyond ~1e8, where
     the rounding of F(y) alone exceeds any box the operator can contract).  Newton's method (midpoint arithmetic: its
@@ -290,7 +291,10 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
     ``system(z, jacobian) -> (F, J)``: plain arithmetic over acb balls, constants exact (or balls); ``z`` (n,)
     complex; ``scale`` (n,).  Newton's method at ``prec`` bits from z (midpoints), then epsilon-inflation as in
     :func:`certify_complex_roots`; a root whose imaginary parts are within ``real_rtol`` is tested in a box
-    invariant under conjugation (a proof of realness).  Returns (proven, lo (2n,), hi (2n,), real, nonreal,
+    invariant under conjugation (a proof of realness).  ``max_move``: how far (relative to the scale) Newton's method
+    may move z, default half the box width limit; the box is built around the point it reaches, so a larger move
+    proves a root near z, not z to that accuracy (for a caller that counts distinct roots: z a root of a slightly
+    different system, e.g. one with rounded parameters).  Returns (proven, lo (2n,), hi (2n,), real, nonreal,
     reason) with lo / hi outward-rounded doubles enclosing the root (real parts, then imaginary parts).
     """
     from flint import acb, acb_mat, arb, ctx
@@ -301,6 +305,7 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
     n = len(z)
     s = np.maximum(np.broadcast_to(np.asarray(scale, dtype=float), (n,)), np.abs(z))
     rmax = 0.5 * max_rel_width * s
+    moved = rmax if max_move is None else max_move * s
     is_real = bool(np.all(np.abs(z.imag) <= real_rtol * (1 + np.abs(z.real))))
     nan = np.full(2 * n, np.nan)
     if not np.all(np.isfinite(z)):
@@ -328,10 +333,11 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
             if step < 2.0 ** (-prec / 2):  # quadratic convergence: the next step is below the precision
                 break
         yc = np.array([complex(v) for v in y])
-        if np.any(np.abs(yc - z) > rmax):
+        if np.any(np.abs(yc - z) > moved):
+            limit = (f"the box width limit ({max_rel_width:.0e} relative)" if max_move is None
+                     else f"{max_move:.0e} relative")
             return False, nan, nan, False, False, (
-                f"Newton's method moves the root by more than the box width limit ({max_rel_width:.0e} relative): "
-                f"it is not a root to that accuracy")
+                f"Newton's method moves the root by more than {limit}: it is not a root to that accuracy")
         F, J = system(y, True)
         try:  # C: any approximate inverse (the Krawczyk operator is an enclosure for every C)
             C = acb_mat(J).mid().solve(eye, algorithm="approx").mid()
