@@ -635,3 +635,23 @@ def test_compiled_and_vectorized_solvers_find_the_same_equilibria():
     assert a.complete and b.complete and a.admissible == b.admissible == 3
     for s, t in zip(a.solutions, b.solutions):
         assert np.max(np.abs(s.position - t.position)) < 1e-10 and np.max(np.abs(s.tensions - t.tensions)) < 1e-10
+
+
+def test_undecided_boxes_are_all_counted_and_only_some_kept(monkeypatch):
+    """A search stopped by its box budget leaves many undecided boxes: every one is counted (and per reason), only
+    the first UNDECIDED_KEPT are kept as boxes; the subproblem is not complete, and the JSON says both."""
+    import cdpr_algebra.bp.search as search
+    from cdpr_algebra.bp.results import BPOptions
+
+    robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
+    opts = BPOptions(max_boxes=20_000, batch=512)
+    monkeypatch.setattr(search, "UNDECIDED_KEPT", 10 ** 9)
+    full = solve_taut_set_interval(robot, robot.lengths, (0, 1, 2), opts)
+    monkeypatch.setattr(search, "UNDECIDED_KEPT", 3)
+    capped = solve_taut_set_interval(robot, robot.lengths, (0, 1, 2), opts)
+    assert full.n_undecided == len(full.undecided) > 3  # the budget leaves more than 3 undecided
+    assert capped.n_undecided == full.n_undecided and len(capped.undecided) == 3
+    assert sum(capped.undecided_reasons.values()) == capped.n_undecided
+    assert not capped.complete and capped.status == "undecided"
+    d = capped.to_dict()
+    assert d["undecided_count"] == full.n_undecided and len(d["undecided"]) == 3

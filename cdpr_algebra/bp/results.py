@@ -94,14 +94,20 @@ class IntervalSubproblem:
     seconds: float
     method: str = ""
     skipped: str | None = None
+    undecided_reasons: dict | None = None  # {reason: boxes}, every undecided box counted (``undecided`` keeps some)
 
     @property
     def admissible(self) -> int:
         return len(self.solutions)
 
     @property
+    def n_undecided(self) -> int:
+        """Undecided boxes, all of them (``undecided`` holds the first ``bp.search.UNDECIDED_KEPT``)."""
+        return len(self.undecided) if self.undecided_reasons is None else sum(self.undecided_reasons.values())
+
+    @property
     def complete(self) -> bool:
-        return not self.undecided
+        return not self.undecided and self.n_undecided == 0
 
     @property
     def status(self) -> str:
@@ -111,9 +117,18 @@ class IntervalSubproblem:
     def to_dict(self) -> dict:
         return {"taut": list(self.taut), "status": self.status, "admissible": self.admissible, "complete": self.complete,
                 "solutions": [s.to_dict() for s in self.solutions],
-                "undecided": [u.to_dict() for u in self.undecided], "boxes": self.boxes,
+                "undecided": [u.to_dict() for u in self.undecided], "undecided_count": self.n_undecided,
+                "undecided_reasons": (dict(self.undecided_reasons) if self.undecided_reasons is not None
+                                      else _reason_counts(self.undecided)), "boxes": self.boxes,
                 "bisections": self.bisections, "proven_inadmissible": self.proven_inadmissible,
                 "seconds": self.seconds, "method": self.method, "skipped": self.skipped}
+
+
+def _reason_counts(boxes) -> dict:
+    out = {}
+    for u in boxes:
+        out[u.reason] = out.get(u.reason, 0) + 1
+    return out
 
 
 @dataclass(frozen=True)
@@ -139,4 +154,4 @@ class IntervalDGPResult:
 
     def to_dict(self) -> dict:
         return {"status": self.status, "subproblems": [s.to_dict() for s in self.subproblems], "seconds": self.seconds,
-                "admissible": len(self.solutions), "undecided": len(self.undecided)}
+                "admissible": len(self.solutions), "undecided": sum(s.n_undecided for s in self.subproblems)}

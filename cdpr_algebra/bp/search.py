@@ -15,6 +15,27 @@ from .results import BPOptions, IntervalDGPResult, IntervalSolution, IntervalSub
 
 
 # ---------------------------------------------------------------------------------------------------------------
+UNDECIDED_KEPT = 1000  # undecided boxes kept (with their reasons) per subproblem; the others are only counted
+
+
+class _Undecided(list):
+    """The undecided boxes of one search, (lo, hi, reason): the first ``UNDECIDED_KEPT`` kept, every one counted
+    (``count``, and per reason).  Why: near a nearly degenerate taut set millions of boxes reach the minimum width
+    (seed 002's 8-cable robot, taut set {2, 4, 6, 8}: 458,000 of 2 million boxes, 1 GiB; `cdpr dgp --settle` with its
+    default budget of 20 million boxes grew to 10 GiB); a list of them says no more than their count and reasons."""
+
+    def __init__(self):
+        super().__init__()
+        self.count = 0
+        self.reasons: dict = {}
+
+    def add(self, lo, hi, reason: str) -> None:
+        self.count += 1
+        self.reasons[reason] = self.reasons.get(reason, 0) + 1
+        if len(self) < UNDECIDED_KEPT:
+            self.append((lo.copy(), hi.copy(), reason))
+
+
 def _branch_and_prune(model: Model, opts: BPOptions):
     core = model.core_cols
     scale = model.core_scale
@@ -25,7 +46,7 @@ def _branch_and_prune(model: Model, opts: BPOptions):
     regions_lo = np.zeros((0, h))
     regions_hi = np.zeros((0, h))
     sol_enclosures = []  # one per distinct solution: (E_lo, E_hi)
-    undecided = []
+    undecided = _Undecided()
     nboxes = 0
     nbis = 0
     pose_n = len(model.bisect_cols)
@@ -68,10 +89,10 @@ def _branch_and_prune(model: Model, opts: BPOptions):
             nboxes += len(lo)
             if nboxes > opts.max_boxes:
                 for k in range(len(lo)):
-                    undecided.append((lo[k, core], hi[k, core], "box budget exhausted"))
+                    undecided.add(lo[k, core], hi[k, core], "box budget exhausted")
                 for l2, h2 in stack_:
                     for k in range(len(l2)):
-                        undecided.append((l2[k, core], h2[k, core], "box budget exhausted"))
+                        undecided.add(l2[k, core], h2[k, core], "box budget exhausted")
                 stack_ = []
                 break
             lo, hi = contract(model, lo.copy(), hi.copy(), opts)
@@ -171,10 +192,10 @@ def _branch_and_prune(model: Model, opts: BPOptions):
             wmax_all = w.max(axis=1)
             tiny = np.isfinite(wmax_all) & (wmax_all < opts.eps)
             for k in np.flatnonzero(tiny):
-                undecided.append((lo[k, core], hi[k, core], f"minimum width {opts.eps:g} reached"))
+                undecided.add(lo[k, core], hi[k, core], f"minimum width {opts.eps:g} reached")
             stuck = ~np.isfinite(wmax_all) & (wmax_pose < opts.eps)
             for k in np.flatnonzero(stuck):
-                undecided.append((lo[k, core], hi[k, core], "tension unbounded at minimum pose width"))
+                undecided.add(lo[k, core], hi[k, core], "tension unbounded at minimum pose width")
             go = ~tiny & ~stuck
             lo, hi, w, wpose, wmax_pose = lo[go], hi[go], w[go], wpose[go], wmax_pose[go]
             smear_pick = smear_pick[go]
@@ -237,8 +258,12 @@ def solve_taut_set_interval(robot, rho, cables, options: BPOptions | None = None
             p, tau = None, None
         undecided.append(UndecidedBox(taut1, reason, model.variables, blo, bhi, p, tau))
     solutions.sort(key=lambda s: tuple(np.round(s.position, 9)))
+    reasons = dict(undecided_raw.reasons)
+    for u in undecided[:len(undecided) - len(undecided_raw)]:  # proven solutions on the boundary
+        reasons[u.reason] = reasons.get(u.reason, 0) + 1
     return IntervalSubproblem(taut1, tuple(solutions), tuple(undecided), nboxes, nbis, inadmissible,
-                              time.perf_counter() - t0, f"interval B&P, {model.frame} frame, l = {model.l}")
+                              time.perf_counter() - t0, f"interval B&P, {model.frame} frame, l = {model.l}",
+                              undecided_reasons=reasons)
 
 
 def excluded_by_filter(robot, rho, cables, max_boxes: int = 64) -> int | None:

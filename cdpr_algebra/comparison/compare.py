@@ -216,7 +216,7 @@ def _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only, hwhy=N
     """(agree, compared) of one subproblem (see the module docstring); ``hflag``: the homotopy subproblem's own
     ``complete`` flag when it has one (None otherwise), ``hwhy``: why it is not complete."""
     h_complete = hcount is not None and ((hskip is None and hfailed == 0 and hflag is not False) or pruned is not None)
-    i_complete = isub.skipped is None and not isub.undecided
+    i_complete = isub.skipped is None and isub.complete
     if i_complete and h_only:
         return False, (f"{len(h_only)} homotopy solution(s) not among the proven solutions of the complete interval "
                        f"search")
@@ -237,8 +237,8 @@ def _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only, hwhy=N
         why.append(f"homotopy incomplete: {hwhy or 'its path outcomes do not account for the generic solution count'}")
     if isub.skipped is not None:
         why.append(f"interval search skipped ({isub.skipped})")
-    elif isub.undecided:
-        why.append(f"interval search incomplete: {len(isub.undecided)} undecided box(es)")
+    elif not isub.complete:
+        why.append(f"interval search incomplete: {isub.n_undecided} undecided box(es)")
     return None, "not compared: " + "; ".join(why)
 
 
@@ -270,7 +270,7 @@ def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed:
     h_only, i_only = _match(robot, taut1, list(hsols), list(isub.solutions))
     hwhy = _incompleteness(hsub) if hflag is False else None
     agree, compared = _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only, hwhy)
-    return SubproblemComparison(taut1, hcount, isub.admissible, len(isub.undecided), agree, h_only, i_only,
+    return SubproblemComparison(taut1, hcount, isub.admissible, isub.n_undecided, agree, h_only, i_only,
                                 tuple(isub.undecided), th, isub.seconds, isub.boxes, hskip, isub.skipped, compared,
                                 hfailed)
 

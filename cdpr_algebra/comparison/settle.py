@@ -92,10 +92,10 @@ def _settle_one(robot, rho, result, sub, isub, seconds):
     taut = tuple(sub.taut)
     cables = [c - 1 for c in taut]
     hsols = [s for s in result.solutions if tuple(s.taut) == taut]
-    if isub.skipped is not None or isub.undecided:
-        reasons = sorted({u.reason for u in isub.undecided})
+    if isub.skipped is not None or not isub.complete:
+        reasons = sorted(isub.undecided_reasons or {u.reason for u in isub.undecided})
         why = (f"interval search skipped ({isub.skipped})" if isub.skipped
-               else f"interval search left {len(isub.undecided)} undecided box(es) ({'; '.join(reasons[:3])})")
+               else f"interval search left {isub.n_undecided} undecided box(es) ({'; '.join(reasons[:3])})")
         return SettleRecord(taut, "undecided", why, None, 0, time.perf_counter() - t0), []
     h_only, i_only = _match(robot, taut, hsols, list(isub.solutions))
     if h_only:
