@@ -29,7 +29,8 @@ def add_parser(subparsers) -> None:
     dgp.add_argument("--settle", action="store_true",
                      help="run the interval branch and prune on every incomplete subproblem: where it is complete it "
                           "proves the subproblem's admissible equilibria (and adds any the homotopy missed); the exit "
-                          "status is then 0 when every admissible equilibrium is known (seconds per subproblem)")
+                          "status is then 0 when every admissible equilibrium is known (seconds to minutes per "
+                          "subproblem; up to ~25 min on nearly degenerate taut sets with the default budget)")
     dgp.add_argument("--settle-max-boxes", type=int, default=None, metavar="N",
                      help="with --settle: at most N boxes per subproblem (the rest are undecided; default 20 million: "
                           "near-singular robots can take minutes per subproblem)")
