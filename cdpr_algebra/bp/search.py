@@ -20,17 +20,15 @@ UNDECIDED_KEPT = 1000  # undecided boxes kept (with their reasons) per subproble
 
 class _Undecided(list):
     """The undecided boxes of one search, (lo, hi, reason): the first ``UNDECIDED_KEPT`` kept, every one counted
-    (``count``, and per reason).  Why: near a nearly degenerate taut set millions of boxes reach the minimum width
+    per reason (``reasons``).  Why: near a nearly degenerate taut set millions of boxes reach the minimum width
     (seed 002's 8-cable robot, taut set {2, 4, 6, 8}: 458,000 of 2 million boxes, 1 GiB; `cdpr dgp --settle` with its
     default budget of 20 million boxes grew to 10 GiB); a list of them says no more than their count and reasons."""
 
     def __init__(self):
         super().__init__()
-        self.count = 0
         self.reasons: dict = {}
 
     def add(self, lo, hi, reason: str) -> None:
-        self.count += 1
         self.reasons[reason] = self.reasons.get(reason, 0) + 1
         if len(self) < UNDECIDED_KEPT:
             self.append((lo.copy(), hi.copy(), reason))
