@@ -342,3 +342,26 @@ def test_precise_endgame_decides_seed002_paths_at_infinity(monkeypatch):
     monkeypatch.setattr(SR, "PRECISE_ENDGAME_PATHS", 0)
     _, failed = S._track(4, target, 0, gamma=False)
     assert failed == 6
+
+
+def test_precise_endgame_budget_decides_seed002_set_1256(monkeypatch):
+    """Seed 002, taut set {1, 2, 5, 6}: 8 paths end at infinity (winding number 2, N(t) ~ t^(k/2), k = 1 .. 3), as in
+    every taut set with the symmetric cables 1 and 5; 5 of them need more than 1500 double-double steps of the
+    precise endgame before two Cauchy estimates agree.  With the budgets of PRECISE_ENDGAME_STEPS / _BUDGET the
+    subproblem is complete; cut to 1500 / 10,000 paths stay failed."""
+    import cdpr_algebra.dgp.solve as S
+    import cdpr_algebra.dgp.study_retrack as SR
+    from cdpr_algebra.homotopy.results import outcome_counts
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
+    target = S._normalized(robot, robot.lengths, (0, 1, 4, 5))[0]
+    res, failed = S._track(4, target, 0, gamma=False)
+    counts = outcome_counts(res.track.paths)
+    assert failed == 0 and counts["at_infinity"] == 8 and counts["regular"] == 208
+    inf = [p for p in res.track.paths if p.status == "at_infinity"]
+    assert all(p.winding_number == 2 and 0.75 <= p.order * p.winding_number <= 3.25 for p in inf)
+    monkeypatch.setattr(SR, "PRECISE_ENDGAME_STEPS", 1500)
+    monkeypatch.setattr(SR, "PRECISE_ENDGAME_BUDGET", 10000)
+    _, failed = S._track(4, target, 0, gamma=False)
+    assert failed > 0

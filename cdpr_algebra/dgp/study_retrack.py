@@ -232,8 +232,8 @@ def _limit_of_one_sheet(q, o) -> bool:
 
 PRECISE_ENDGAME = "precise_endgame"  # the ``retried`` of a path decided by _precise_endgames
 PRECISE_ENDGAME_PATHS = 64  # failed Study paths per run given the endgame with double-double (~0.1-0.3 s each)
-PRECISE_ENDGAME_STEPS = 1500  # its steps in double-double per path (~0.1-0.3 ms each)
-PRECISE_ENDGAME_BUDGET = 10000  # ... and per run
+PRECISE_ENDGAME_STEPS = 6000  # its steps in double-double per path (~0.1-0.3 ms each)
+PRECISE_ENDGAME_BUDGET = 40000  # ... and per run
 PRECISE_FLOOR = 1e-16  # the double-double tracker's corrector floor there (dd_tracker.dd_track's corrector_floor)
 
 
@@ -257,7 +257,11 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
     rejected there: Newton's updates stop at ~1e-32 times the condition number.  Phase-1 failures are left out: on
     seed 000 Test 3 its three (crawls at t ~ 0.3-0.4) cost 0.8 s serial in double-double, which the taut system or a
     re-run with a new gamma settles anyway; on seed 002 it decided 4 of 9 such paths, against 88 of 135 in the
-    endgame zone."""
+    endgame zone.  Budgets (twenty-second session): with 1500 double-double steps a path and 10,000 a run, 8 paths of
+    seed 002's taut sets {1, 2, 5, 6} and {1, 4, 5, 8} were cut off before two estimates agreed; with 6000 and 40,000
+    they end at infinity (winding number 2, v c = 0.85 .. 1.23, as the 8 of each sibling taut set with cables 1 and
+    5) and both subproblems are complete (seed 002: 49 -> 41 failed paths, 6 -> 4 incomplete, 63 s either way);
+    bench_large_forces seeds 300-303 the same counts in 84 s instead of 68 s (their 3 flagged robots spend it)."""
     spaths = list(spaths)
     eo, tr = opts.endgame, opts.tracker
     te = eo.endgame_start
