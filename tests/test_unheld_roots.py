@@ -186,3 +186,30 @@ def test_the_endgame_in_double_double_reaches_the_same_two_roots():
     assert len(roots) == 2
     for p in got:
         assert min(np.max(np.abs(r - p.endpoint)) for r in roots) <= 1e-8 * np.max(np.abs(p.endpoint))
+
+
+def test_failed_paths_settle_on_the_roots_of_the_other_route():
+    """Seed 000 Test 1, taut set {1, 2, 3} (156 paths): two paths of a run made to fail (last points far from any
+    root) are settled on the regular roots of another run of the same target that no path of the first holds (the
+    same roots, found again by Newton's method); a run whose own roots are offered settles nothing."""
+    import cdpr_algebra.dgp.solve as S
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
+    target = S._normalized(robot, robot.lengths, (0, 1, 2))[0]
+    res, failed = S._track(3, target, 0, gamma=False)
+    assert failed == 0
+    paths = list(res.track.paths)
+    lost = [5, 77]
+    for i in lost:
+        paths[i] = replace(paths[i], status=STEP_TOO_SMALL, endpoint=paths[i].endpoint + 3.0, t=0.4 + 0j)
+    bad = replace(res, track=replace(res.track, paths=tuple(paths)))
+    settled, left = S._settle_on_other_runs_roots(3, target, bad, res, None)
+    assert left == 0 and outcome_counts(settled.track.paths)["regular"] == 156
+    assert all(settled.track.paths[i].retried == UNHELD_ROOT for i in lost)
+    # the two roots, in some order (which failed path held which is not claimed)
+    got = [settled.track.paths[i].endpoint for i in lost]
+    for i in lost:
+        assert min(np.max(np.abs(g - res.track.paths[i].endpoint)) for g in got) <= 1e-9
+    _, left = S._settle_on_other_runs_roots(3, target, bad, bad, None)
+    assert left == 2

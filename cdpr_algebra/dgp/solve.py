@@ -119,7 +119,7 @@ from .one_cable import one_cable_equilibria
 from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, study_roots, track_study_first
 from .unheld_roots import settle_on_unheld_roots
 from .taut_system import FastTautSystem, fast_family
-from cdpr_algebra.homotopy.results import AT_INFINITY, ENDGAME_FAILED, FAILURES, OUTCOMES, outcome_counts
+from cdpr_algebra.homotopy.results import AT_INFINITY, ENDGAME_FAILED, FAILURES, OUTCOMES, SUCCESS, outcome_counts
 from cdpr_algebra.report.jsonable import jsonable
 from cdpr_algebra.model.pose import angles_from_matrix, rotation_taking
 from cdpr_algebra.model.stability import stability_classes
@@ -396,7 +396,7 @@ def _solve_one_cable(robot, rho, i):
 
 
 MP_RETRY_PATHS = 4  # with retry_mpmath: failed paths per subproblem run tracked again in double-double (Study)
-RERUN_MAX_FAILED = 2  # re-run a subproblem with a new gamma only when at most this many of its paths failed
+RERUN_MAX_FAILED = 4  # re-run a subproblem with a new gamma only when at most this many of its paths failed
 # predictor tolerance of the tracker (engine default 1e-5; the corrector still ends at 1e-8, with a third Newton
 # update where two do not reach it).  Measured on seed 000 Tests 2 and 3 (tenth session): 1e-4 -> 3e-4 takes
 # Test 3's phase 1 from 533k to 457k steps; 1e-3 (413k) left one more subproblem of Test 2 incomplete.
@@ -584,8 +584,11 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     # (5 of 18 such); none of the 19 with 3 to 10 failures did.
     if 0 < failed <= RERUN_MAX_FAILED:
         res2, failed2 = _track(m, target, seed + 7919, gamma=True, options=options)
+        other = res
         if failed2 < failed:
-            res, failed = res2, failed2
+            res, failed, other = res2, failed2, res
+        if failed:  # the other run's regular roots that no path of this one holds settle its failed paths
+            res, failed = _settle_on_other_runs_roots(m, target, res, other, options)
     X = np.array([s.x for s in res.solutions]).reshape(-1, fam.n)
     finite = len(X)
     real = np.all(np.abs(X.imag) <= REAL_TOL * (1 + np.abs(X.real)), axis=1) if finite else np.zeros(0, bool)
@@ -627,6 +630,22 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
                         outcomes=outcomes, failures=failures, complete=False, generic_count=generic, retried=retried)
     regular = np.array([s.x for s in res.solutions if not s.singular]).reshape(-1, fam.n)
     return sub, sols, _world_coordinates(regular, m, c, L, Rw, cb, robot.load)
+
+
+def _settle_on_other_runs_roots(m, target, res, other, options):
+    """(``res`` with its failed paths settled on the regular roots of the ``other`` run (another route to the same
+    target) that no path of ``res`` holds, failed paths left): :func:`.unheld_roots.settle_on_unheld_roots` with those
+    roots as the estimates (each tested again by Newton's method at the target).  Why this accounts for paths: a
+    regular root of the target is the limit of exactly one branch of each run, so a regular root that no settled path
+    of ``res`` ends on is the limit of one of its failed paths (the module doc of :mod:`.unheld_roots`).  Measured
+    (twenty-second session) on seed 002's 8-cable robot: the taut sets {3, 6, 7} and {2, 3, 6, 7} lose 3 and 1 paths
+    to phase-1 crawls near Study's exceptional set in each run, not the same paths in both."""
+    from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
+
+    options = default_options() if options is None else options
+    roots = [p.endpoint for p in other.track.paths if p.status == SUCCESS]
+    p_gen = _generic(m)[0]
+    return settle_on_unheld_roots(ParameterHomotopy(fast_family(m), p_gen, target), res, options, RESIDUAL_TOL, roots)
 
 
 def _world_coordinates(X, m, c, L, Rw, cb, Q):
