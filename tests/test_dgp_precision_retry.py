@@ -19,7 +19,7 @@ import pytest
 import cdpr_algebra.homotopy.endgame as eg
 import cdpr_algebra.homotopy.dd_tracker as dd
 import cdpr_algebra.homotopy.tracker as tk
-from cdpr_algebra.dgp import study_retrack
+from cdpr_algebra.dgp import solve as dgp_solve, study_retrack
 from cdpr_algebra.dgp.solve import STUDY_FIRST, _generic, default_options, solve_taut_set
 from cdpr_algebra.dgp.study_retrack import STUDY_EXTENDED, FastStudySystem
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
@@ -60,6 +60,7 @@ def test_failed_path_is_tracked_in_arbitrary_precision(monkeypatch):
     # the endgame over double-double (study_retrack._precise_endgames) would settle the Study paths forced to fail:
     # off, this test is about the rescue of --mpmath-retry
     monkeypatch.setattr(study_retrack, "PRECISE_ENDGAME_PATHS", 0)
+    monkeypatch.setattr(dgp_solve, "AUTO_RESCUE_MAX_FAILED", 0)  # nor the rescue itself unless asked for
     sub1, _ = solve_taut_set(robot, rho, cables, certify=False, exclude=False)
     assert sub1.failed_paths == 1  # forced: without the retry, the path fails
 

@@ -56,13 +56,15 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   solutions or singular sets at infinity, which smaller steps do not restore).  (Without ``STUDY_FIRST``, the
   taut system tracks every path first and the paths it leaves failed are tracked again in Study parameters along
   the same parameter path, ``STUDY_RETRACK``, :func:`.study_retrack.retrack_failed_in_study`.)  If one or two failed
-  paths remain (at most ``RERUN_MAX_FAILED``), the subproblem is re-run once with a random gamma and another seed,
-  and the run with fewer failures is kept (each run's failed paths are first settled, where Newton's method from
+  paths remain (at most ``RERUN_MAX_FAILED`` = 4), the subproblem is re-run once with a random gamma and another seed,
+  the run with fewer failures is kept and its failed paths are settled on the other run's regular roots that none of
+  its paths holds (:func:`_settle_on_other_runs_roots`) (each run's failed paths are first settled, where Newton's method from
   their last estimates, and in Study parameters from the Study run's last points, :func:`.study_retrack.study_roots`,
   finds regular roots that no other path holds, :mod:`.unheld_roots`); with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), the
   paths still failed are tracked once more in Study parameters, in compiled double-double
   arithmetic wherever double precision fails (:func:`.study_retrack._rescue_in_extended_precision`: at most
-  ``MP_RETRY_PATHS`` = 4 paths per run, up to ~10 s each, so off by default).  Every path ends with one outcome (``regular``, ``singular``, ``at_infinity``,
+  ``MP_RETRY_PATHS`` = 4 paths per run, up to ~10 s each, so off by default, and automatic for a subproblem left
+  with at most ``AUTO_RESCUE_MAX_FAILED`` = 2 failed paths, :func:`_rescue_last_failed_paths`).  Every path ends with one outcome (``regular``, ``singular``, ``at_infinity``,
   ``failed`` with its reason), counted per subproblem (``outcomes``, ``failures``); a subproblem is
   ``complete`` when no path failed and its regular, singular and at-infinity endpoints account for the generic
   count (paths ending on one regular point are failures, ``path_jumping``: a solution is then missing).  A path put
@@ -397,6 +399,7 @@ def _solve_one_cable(robot, rho, i):
 
 MP_RETRY_PATHS = 4  # with retry_mpmath: failed paths per subproblem run tracked again in double-double (Study)
 RERUN_MAX_FAILED = 4  # re-run a subproblem with a new gamma only when at most this many of its paths failed
+AUTO_RESCUE_MAX_FAILED = 2  # ... then the extended-precision rescue of --mpmath-retry for at most this many left
 # predictor tolerance of the tracker (engine default 1e-5; the corrector still ends at 1e-8, with a third Newton
 # update where two do not reach it).  Measured on seed 000 Tests 2 and 3 (tenth session): 1e-4 -> 3e-4 takes
 # Test 3's phase 1 from 533k to 457k steps; 1e-3 (413k) left one more subproblem of Test 2 incomplete.
@@ -582,13 +585,16 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     # Measured (ninth session, seed 000): re-run at up to 5 % failed paths, Tests 2 and 3 re-ran 37 subproblems
     # (a fifth of their tracking steps) and 5 came out complete, all of them with 1 or 2 failed paths at first
     # (5 of 18 such); none of the 19 with 3 to 10 failures did.
+    route = (seed, False)
     if 0 < failed <= RERUN_MAX_FAILED:
         res2, failed2 = _track(m, target, seed + 7919, gamma=True, options=options)
         other = res
         if failed2 < failed:
-            res, failed, other = res2, failed2, res
+            res, failed, other, route = res2, failed2, res, (seed + 7919, True)
         if failed:  # the other run's regular roots that no path of this one holds settle its failed paths
             res, failed = _settle_on_other_runs_roots(m, target, res, other, options)
+    if 0 < failed <= AUTO_RESCUE_MAX_FAILED and not (options is not None and options.retry_mpmath):
+        res, failed = _rescue_last_failed_paths(m, target, res, *route, options)
     X = np.array([s.x for s in res.solutions]).reshape(-1, fam.n)
     finite = len(X)
     real = np.all(np.abs(X.imag) <= REAL_TOL * (1 + np.abs(X.real)), axis=1) if finite else np.zeros(0, bool)
@@ -630,6 +636,19 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
                         outcomes=outcomes, failures=failures, complete=False, generic_count=generic, retried=retried)
     regular = np.array([s.x for s in res.solutions if not s.singular]).reshape(-1, fam.n)
     return sub, sols, _world_coordinates(regular, m, c, L, Rw, cb, robot.load)
+
+
+def _rescue_last_failed_paths(m, target, res, seed, gamma, options):
+    """(``res``, the run of ``seed`` and ``gamma``, with its failed paths tracked once more in Study parameters in
+    double-double wherever double precision fails, as ``retry_mpmath`` does for every subproblem: at most
+    ``MP_RETRY_PATHS``; failed paths left).  For the subproblems that every other step leaves with at most
+    ``AUTO_RESCUE_MAX_FAILED`` failed paths.  Measured (twenty-second session): seed 002's taut set {2, 3, 6, 7},
+    one phase-1 crawl in both routes, complete in 4.7 s instead of incomplete in 1.6 s."""
+    p_gen, X_gen = _generic(m)
+    opts = replace(default_options() if options is None else options, retry_mpmath=True)
+    res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, opts,
+                                     failed_in_study=True)
+    return res, sum(1 for p in res.track.paths if p.status in FAILURES)
 
 
 def _settle_on_other_runs_roots(m, target, res, other, options):
