@@ -213,3 +213,26 @@ def test_failed_paths_settle_on_the_roots_of_the_other_route():
         assert min(np.max(np.abs(g - res.track.paths[i].endpoint)) for g in got) <= 1e-9
     _, left = S._settle_on_other_runs_roots(3, target, bad, bad, None)
     assert left == 2
+
+
+def test_residual_bound_grows_with_the_size_of_a_root():
+    """A fixed tolerance below the floor eps |x| of a root rounded to doubles; the bound follows it beyond."""
+    from cdpr_algebra.dgp.unheld_roots import ROUNDING_RESIDUAL, residual_bound
+
+    X = np.array([[1.0, 2.0], [3e2, 1.0], [7.4e7, 1.0j]])
+    b = residual_bound(X, 1e-8)
+    assert b[0] == b[1] == 1e-8 and np.isclose(b[2], ROUNDING_RESIDUAL * (1 + 7.4e7))
+    assert b[2] > 1.3e-8  # the residual of seed 002's root below, Newton quadratic to 2.5e-14
+
+
+def test_a_root_of_size_1e8_is_kept_and_certified():
+    """Seed 002, taut set {2, 4, 6, 8}: a complex root with |x| = 7.4e7 (condition 9e11) reached by the endgame in
+    double-double; in taut coordinates Newton converges quadratically but the residual of the nearest doubles is
+    1.3e-8, above the fixed 1e-8, and the root was refused, its path failed in both routes.  With the residual bound
+    the subproblem is complete and every endpoint is proven (ball arithmetic for that one)."""
+    import cdpr_algebra.dgp.solve as S
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
+    sub, _ = S.solve_taut_set(robot, robot.lengths, (1, 3, 5, 7), certify=False)
+    assert sub.complete and sub.outcomes["failed"] == 0 and sub.certified == 216

@@ -75,6 +75,7 @@ from cdpr_algebra.homotopy.results import AT_INFINITY, FAILURES, SINGULAR, SUCCE
 from cdpr_algebra.model.study_equations import STUDY_CHART_PARAMETERS, from_study, study_family, to_study
 
 from .taut_system import LazyFamilySystem
+from .unheld_roots import residual_bound
 
 __all__ = ["FastStudySystem", "fast_study_family", "retrack_failed_in_study", "track_study_first", "warm_study_kernels",
            "study_roots", "RESIDUAL_TOL", "TAUT_FALLBACK"]
@@ -396,7 +397,7 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     regular = [p.endpoint for p in paths if p.status == SUCCESS]
     for k, j in enumerate(ok):
         x = X[k]
-        if not (quad[k] and residual[k] <= RESIDUAL_TOL and np.all(np.isfinite(x))):
+        if not (quad[k] and residual[k] <= residual_bound(x, RESIDUAL_TOL)[0] and np.all(np.isfinite(x))):
             continue
         if coincides_with_any(regular, x, opts.endgame.cluster_tol):  # the detour retry's test of a new point
             continue
@@ -419,7 +420,7 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     for j, q in enumerate(spaths):  # the others keep their outcome; their steps include the Study run's
         if j not in done:
             i = failed[j]
-            if estimates is not None and q.status in FAILURES and np.all(np.isfinite(q.endpoint)):
+            if estimates is not None and np.all(np.isfinite(q.endpoint)):  # failed, or an endpoint refused above
                 estimates[i] = q.endpoint
             paths[i] = replace(paths[i], steps=paths[i].steps + q.steps + (precise[j][1] if j in precise else 0))
     if not rescued:

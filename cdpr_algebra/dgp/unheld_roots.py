@@ -30,7 +30,8 @@ from cdpr_algebra.homotopy.refinement import refine
 from cdpr_algebra.homotopy.results import ENDGAME_FAILED, FAILURES, SINGULAR, SUCCESS
 from cdpr_algebra.homotopy.solve import group_solutions
 
-__all__ = ["MAX_CONDITION", "NEWTON_STEPS", "SETTLED", "UNHELD_ROOT", "newton_roots", "settle_on_unheld_roots"]
+__all__ = ["MAX_CONDITION", "NEWTON_STEPS", "SETTLED", "UNHELD_ROOT", "newton_roots", "residual_bound",
+           "settle_on_unheld_roots"]
 
 NEWTON_STEPS = 40  # Newton iterations from an estimate (ill-conditioned roots converge slowly from afar)
 SETTLED = 1e-10  # the last Newton update (relative) of a kept root
@@ -41,16 +42,33 @@ MAX_CONDITION = 1e14
 UNHELD_ROOT = "unheld_root"  # the ``retried`` of a failed path settled by this module
 
 
+ROUNDING_RESIDUAL = 1e-14  # per unit of size: the residual floor of a root rounded to doubles (residual_bound)
+
+
+def residual_bound(X, residual_tol) -> np.ndarray:
+    """The largest relative residual (``refinement.relative_residual``: max |H| / (1 + max |x|)) accepted at the
+    points X (rows): ``residual_tol``, or ``ROUNDING_RESIDUAL`` (1 + max |x|) where that is larger.  Why: the DGP's
+    equations are quadratic, so the double nearest a root x (off by eps |x|) leaves |H| ~ eps |x|^2 even with
+    residuals in double-double, a relative residual ~ eps |x|: a fixed tolerance refuses every root beyond
+    |x| ~ 1e8 however well Newton converged.  Measured (twenty-second session): seed 002's taut set {2, 4, 6, 8}, a
+    root with |x| = 7.4e7 (condition 9e11; Newton quadratic to 2.5e-14, residual 1.3e-8 > 1e-8; in Study parameters
+    residual 2e-13), which both routes' paths then failed to reach."""
+    X = np.atleast_2d(X)
+    with np.errstate(all="ignore"):
+        return np.maximum(residual_tol, ROUNDING_RESIDUAL * (1 + np.max(np.abs(X), axis=1)))
+
+
 def newton_roots(homotopy, X, residual_tol):
     """Rows X refined at t = 0 (at most ``NEWTON_STEPS`` iterations): (points, their (residual, condition, last
     update), mask of Newton-quadratic finite roots with a last update <= ``SETTLED``, condition number <=
-    ``MAX_CONDITION`` and residual <= tol)."""
+    ``MAX_CONDITION`` and residual within :func:`residual_bound` of tol)."""
     X = np.asarray(X, dtype=complex).reshape(-1, homotopy.n)
     if not len(X):
         return X, [], np.zeros(0, dtype=bool)
     with np.errstate(all="ignore"):
         x, upd, res, cond, quad = refine(homotopy, X, 0.0, max_iter=NEWTON_STEPS)
-    good = quad & (upd <= SETTLED) & (cond <= MAX_CONDITION) & (res <= residual_tol) & np.all(np.isfinite(x), axis=1)
+    good = quad & (upd <= SETTLED) & (cond <= MAX_CONDITION) & (res <= residual_bound(x, residual_tol))
+    good &= np.all(np.isfinite(x), axis=1)
     return x, list(zip(res, cond, upd)), good
 
 
