@@ -25,7 +25,8 @@ def add_parser(subparsers) -> None:
     dgp.add_argument("--mpmath-retry", action="store_true",
                      help="track up to 4 paths per subproblem run that every double-precision retry left failed "
                           "once more, in double-double (compiled, about 30 digits) wherever double precision fails "
-                          "(slow: up to ~10 s a path; the name is historical: no mpmath)")
+                          "(slow: up to ~10 s a path; the name is historical: no mpmath); without the flag this "
+                          "runs only for subproblems left with at most 2 failed paths")
     dgp.add_argument("--settle", action="store_true",
                      help="run the interval branch and prune on every incomplete subproblem: where it is complete it "
                           "proves the subproblem's admissible equilibria (and adds any the homotopy missed); the exit "
@@ -42,7 +43,7 @@ def add_parser(subparsers) -> None:
 
 
 def run(args) -> int:
-    from cdpr_algebra.dgp.solve import dgp, dgp_table
+    from cdpr_algebra.dgp.solve import AUTO_RESCUE_MAX_FAILED, dgp, dgp_table
     from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(args.robot)
@@ -95,7 +96,8 @@ def run(args) -> int:
         return 0
     if not result.complete:
         print_incomplete(result)
-        if any(s.failed_paths for s in result.incomplete) and not args.mpmath_retry:
+        # subproblems with at most AUTO_RESCUE_MAX_FAILED failed paths had that rescue already
+        if any(s.failed_paths > AUTO_RESCUE_MAX_FAILED for s in result.incomplete) and not args.mpmath_retry:
             print("  (--mpmath-retry tracks up to 4 failed paths per subproblem again, in double-double where double "
                   "precision fails: up to ~10 s a path)", file=sys.stderr)
         if not args.settle:
