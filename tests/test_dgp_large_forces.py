@@ -216,3 +216,23 @@ def test_normalized_coordinates_invert_world_coordinates():
     x = D._normalized_coordinates(encode(p, R, tau / robot.lengths)[None], m, c, L, Rw, cb, robot.load)
     F, _ = D.fast_family(m).evaluate_and_jacobian(x.astype(complex), target)
     assert np.abs(F).max() <= 1e-9 * np.abs(x).max() ** 2
+
+
+def test_pair_of_condition_1e14_settles_the_last_two_paths(monkeypatch):
+    """m = 6, K = 1e4 (seed 360): the equilibrium and its partner (tensions of both signs) have condition numbers
+    ~1.2e14; their two paths fail in both routes, and Newton's method from the paths' last estimates converges to
+    them (residual ~1e-17, last update ~1e-15).  Kept up to unheld_roots.MAX_CONDITION (1e15), the subproblem is
+    complete and the equilibrium certified; at the former bound 1e14 the two paths stay failed."""
+    import cdpr_algebra.dgp.unheld_roots as U
+
+    m = 6
+    robot, p, R, tau = large_force_robot(m, 1e4, 360)
+    cables = tuple(range(m))
+    own = root_of_the_robot_system(robot, cables, p, R, tau)
+    sub, sols = solve_taut_set(robot, robot.lengths, cables, certify=True)
+    assert sub.complete and sub.retried.get("unheld_root") == 2
+    (s,) = [s for s in sols if matches(s, *own, robot.size)]
+    assert s.certificate.certified
+    monkeypatch.setattr(U, "MAX_CONDITION", 1e14)
+    sub, _ = solve_taut_set(robot, robot.lengths, cables, certify=False)
+    assert not sub.complete and sub.outcomes["failed"] == 2
