@@ -101,13 +101,24 @@ class IntervalSubproblem:
         return len(self.solutions)
 
     @property
+    def undecided_by_reason(self) -> dict:
+        """{reason: boxes} of every undecided box: as the search counted them (``undecided_reasons``), else those
+        of ``undecided``."""
+        if self.undecided_reasons is not None:
+            return dict(self.undecided_reasons)
+        out = {}
+        for u in self.undecided:
+            out[u.reason] = out.get(u.reason, 0) + 1
+        return out
+
+    @property
     def n_undecided(self) -> int:
         """Undecided boxes, all of them (``undecided`` holds the first ``bp.search.UNDECIDED_KEPT``)."""
-        return len(self.undecided) if self.undecided_reasons is None else sum(self.undecided_reasons.values())
+        return sum(self.undecided_by_reason.values())
 
     @property
     def complete(self) -> bool:
-        return not self.undecided and self.n_undecided == 0
+        return self.n_undecided == 0
 
     @property
     def status(self) -> str:
@@ -118,17 +129,9 @@ class IntervalSubproblem:
         return {"taut": list(self.taut), "status": self.status, "admissible": self.admissible, "complete": self.complete,
                 "solutions": [s.to_dict() for s in self.solutions],
                 "undecided": [u.to_dict() for u in self.undecided], "undecided_count": self.n_undecided,
-                "undecided_reasons": (dict(self.undecided_reasons) if self.undecided_reasons is not None
-                                      else _reason_counts(self.undecided)), "boxes": self.boxes,
+                "undecided_reasons": self.undecided_by_reason, "boxes": self.boxes,
                 "bisections": self.bisections, "proven_inadmissible": self.proven_inadmissible,
                 "seconds": self.seconds, "method": self.method, "skipped": self.skipped}
-
-
-def _reason_counts(boxes) -> dict:
-    out = {}
-    for u in boxes:
-        out[u.reason] = out.get(u.reason, 0) + 1
-    return out
 
 
 @dataclass(frozen=True)

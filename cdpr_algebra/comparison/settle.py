@@ -93,7 +93,7 @@ def _settle_one(robot, rho, result, sub, isub, seconds):
     cables = [c - 1 for c in taut]
     hsols = [s for s in result.solutions if tuple(s.taut) == taut]
     if isub.skipped is not None or not isub.complete:
-        reasons = sorted(isub.undecided_reasons or {u.reason for u in isub.undecided})
+        reasons = sorted(isub.undecided_by_reason)
         why = (f"interval search skipped ({isub.skipped})" if isub.skipped
                else f"interval search left {isub.n_undecided} undecided box(es) ({'; '.join(reasons[:3])})")
         return SettleRecord(taut, "undecided", why, None, 0, time.perf_counter() - t0), []

@@ -444,25 +444,30 @@ def _track(m, target, seed, gamma, options=None):
                                gamma=gamma, retries=PROJECTIVE_RETRIES)
         return _tension_infinity_undecided(res, m)
 
-    estimates = {}  # the Study run's last points of the paths it left failed
+    estimates = {}  # the Study run's last points of the paths it left failed (or whose endpoints it refused)
     if STUDY_FIRST:
         res = track_study_first(fast_family(m), m, p_gen, X_gen, target, seed, gamma, options,
                                 lambda rows: track_taut(rows, detour=False), estimates)
         if options.retry_mpmath and any(p.status in FAILURES for p in res.track.paths):
-            res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, options,
-                                             failed_in_study=True)
+            res, _ = _rescue_last_failed_paths(m, target, res, seed, gamma, options)
     else:
         res = track_taut(np.arange(len(X_gen)))
         if STUDY_RETRACK:
             res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, options)
     if UNHELD_ROOTS and any(p.status in FAILURES for p in res.track.paths):
-        from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
-
         left = [i for i, p in enumerate(res.track.paths) if p.status in FAILURES and i in estimates]
-        more = study_roots(m, p_gen, target, [estimates[i] for i in left])
-        res, _ = settle_on_unheld_roots(ParameterHomotopy(fast_family(m), p_gen, target), res, options, RESIDUAL_TOL,
-                                        more)
+        res, _ = _settle_on_unheld_roots(m, target, res, options,
+                                         study_roots(m, p_gen, target, [estimates[i] for i in left]))
     return res, sum(1 for p in res.track.paths if p.status in FAILURES)
+
+
+def _settle_on_unheld_roots(m, target, res, options, estimates=()):
+    """:func:`.unheld_roots.settle_on_unheld_roots` for the run ``res`` of the taut system of m cables to ``target``
+    (``estimates``: more points to start Newton's method from): (result, failed paths left)."""
+    from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
+
+    return settle_on_unheld_roots(ParameterHomotopy(fast_family(m), _generic(m)[0], target), res, options,
+                                  RESIDUAL_TOL, estimates)
 
 
 def _tension_infinity_undecided(res, m):
@@ -642,7 +647,7 @@ def _rescue_last_failed_paths(m, target, res, seed, gamma, options):
     """(``res``, the run of ``seed`` and ``gamma``, with its failed paths tracked once more in Study parameters in
     double-double wherever double precision fails, as ``retry_mpmath`` does for every subproblem: at most
     ``MP_RETRY_PATHS``; failed paths left).  For the subproblems that every other step leaves with at most
-    ``AUTO_RESCUE_MAX_FAILED`` failed paths.  Measured (twenty-second session): seed 002's taut set {2, 3, 6, 7},
+    ``AUTO_RESCUE_MAX_FAILED`` failed paths, and with ``retry_mpmath`` for every run (:func:`_track`).  Measured (twenty-second session): seed 002's taut set {2, 3, 6, 7},
     one phase-1 crawl in both routes, complete in 4.7 s instead of incomplete in 1.6 s."""
     p_gen, X_gen = _generic(m)
     opts = replace(default_options() if options is None else options, retry_mpmath=True)
@@ -659,12 +664,9 @@ def _settle_on_other_runs_roots(m, target, res, other, options):
     of ``res`` ends on is the limit of one of its failed paths (the module doc of :mod:`.unheld_roots`).  Measured
     (twenty-second session) on seed 002's 8-cable robot: the taut sets {3, 6, 7} and {2, 3, 6, 7} lose 3 and 1 paths
     to phase-1 crawls near Study's exceptional set in each run, not the same paths in both."""
-    from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
-
     options = default_options() if options is None else options
-    roots = [p.endpoint for p in other.track.paths if p.status == SUCCESS]
-    p_gen = _generic(m)[0]
-    return settle_on_unheld_roots(ParameterHomotopy(fast_family(m), p_gen, target), res, options, RESIDUAL_TOL, roots)
+    return _settle_on_unheld_roots(m, target, res, options,
+                                   [p.endpoint for p in other.track.paths if p.status == SUCCESS])
 
 
 def _world_coordinates(X, m, c, L, Rw, cb, Q):

@@ -357,7 +357,8 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     failed paths of ``res`` were tracked in Study parameters in double precision already (by
     :func:`track_study_first`), so only the rescue in extended precision of ``retry_mpmath`` runs (the same homotopy
     in double precision again would fail the same way).  ``estimates``: a dict that receives {path: its last point
-    in Study coordinates} for the paths that the Study run left failed (:func:`study_roots` starts from them)."""
+    in Study coordinates} for the paths that the Study run left failed or whose endpoint the tests above refused
+    (:func:`study_roots` starts from them)."""
     from cdpr_algebra.homotopy.clusters import coincides_with_any
     from cdpr_algebra.homotopy.refinement import refine
     from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
@@ -395,9 +396,10 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     if ok:  # Newton in the taut system (residuals in double-double where the system offers them), as every endpoint
         X, upd, residual, cond, quad = refine(ParameterHomotopy(system, start_parameters, target), X0, 0.0)  # t = 0
     regular = [p.endpoint for p in paths if p.status == SUCCESS]
+    bound = residual_bound(X, RESIDUAL_TOL) if ok else None
     for k, j in enumerate(ok):
         x = X[k]
-        if not (quad[k] and residual[k] <= residual_bound(x, RESIDUAL_TOL)[0] and np.all(np.isfinite(x))):
+        if not (quad[k] and residual[k] <= bound[k] and np.all(np.isfinite(x))):
             continue
         if coincides_with_any(regular, x, opts.endgame.cluster_tol):  # the detour retry's test of a new point
             continue
