@@ -66,6 +66,10 @@ def test_at_infinity_is_decided_by_the_homogenizing_coordinate():
     inf = [p for p in res.track.paths if p.status == "at_infinity"]
     assert all(abs(p.order - 1.0) < 0.05 and p.winding_number == 1 for p in inf)
     assert np.allclose(sorted(s.x[0].real for s in res.solutions), [1.0, 1.0], atol=1e-12)
+    # which coordinates go to infinity: x ~ 1 / (a t) along the path (a(t) ~ t), y -> +-1 stays finite
+    for p in inf:
+        assert abs(p.valuation(slice(0, 1)) + 1.0) < 0.05 and abs(p.valuation(slice(1, 2))) < 0.05
+        assert abs(p.previous_t) > abs(p.t) > 0
 
 
 def test_tiny_step_budget_fails_paths_and_counts_add_up():
@@ -95,7 +99,7 @@ def test_chart_path_failed_before_the_first_sample_is_not_tracked_again():
     seg = track_segment(ph, to_chart(_start(P1), ph.chart), 1.0, te, PROJECTIVE.tracker)
     assert np.all(seg.status == "success")
     budget = TrackerOptions(max_steps=2)
-    x, status, _, _, t, steps, _ = _finish(ph, seg.x, PROJECTIVE, budget)
+    x, status, _, _, t, steps, _, _ = _finish(ph, seg.x, PROJECTIVE, budget)
     assert list(status) == ["too_many_steps"] * 4
     assert np.all(np.abs(t) > te * PROJECTIVE.endgame.sample_ratio) and np.all(np.abs(t) < te)
     assert list(steps) == [2] * 4

@@ -192,6 +192,7 @@ class EndgameResult:
     steps: np.ndarray
     xlast: np.ndarray = None  # the path at the last sample radius reached
     xprev: np.ndarray = None  # ... and at the radius before (NaN when there was none)
+    tprev: np.ndarray = None  # that radius (NaN when there was none)
 
 
 def _cauchy_loops(homotopy, x, r, o: EndgameOptions, tr: TrackerOptions):
@@ -246,6 +247,7 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
     xprev = np.full_like(x, np.nan)
     N, n = x.shape
     r = np.full(N, float(t0))
+    rprev = np.full(N, np.nan)
     status = np.full(N, "", dtype=object)
     xend = x.copy()
     wind = np.ones(N, dtype=int)
@@ -267,6 +269,7 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
         seg = track_segment(homotopy, x[a], r[a], r[a] * o.sample_ratio, tr)
         steps[a] += seg.steps
         xprev[a] = x[a]
+        rprev[a] = r[a]
         x[a] = seg.x
         r[a] = np.where(seg.status == SUCCESS, r[a] * o.sample_ratio, np.abs(seg.t))
         ln = np.full(N, np.nan)
@@ -341,7 +344,7 @@ def cauchy_endgame(homotopy, x, t0: float, o: EndgameOptions, tr: TrackerOptions
         status[i] = ENDGAME_FAILED
         xend[i] = x[i]
     return EndgameResult(x=xend, status=status, winding=wind, accuracy=acc, t=r.astype(complex), steps=steps,
-                         xlast=x, xprev=xprev)
+                         xlast=x, xprev=xprev, tprev=rprev.astype(complex))
 
 
 def _would_be_at_infinity(Y, accuracy, o: EndgameOptions) -> np.ndarray:
@@ -483,8 +486,9 @@ def _track_to_endgame(homotopy, X0, idx, opts: SolveOptions, te, tr: TrackerOpti
 def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
     """Phases 2-3 for paths at t = te (``h``: step lengths in t that phase 1 ended with, to start phase 2 with;
     NaN or None: the tracker's initial step).  Returns per-path arrays (x, status, winding, accuracy, t, steps,
-    order).  A homotopy with a ``chart`` (it is itself projective) has its endpoints decided by
-    :func:`decide_in_chart`; with ``endgame.projective`` an affine homotopy that offers ``projective()`` hands
+    order, (prev, prev_t)): ``prev`` the sample before the last of the paths decided at infinity after Cauchy
+    samples (in the coordinates of x), ``prev_t`` its radius (NaN elsewhere).  A homotopy with a ``chart`` (it is
+    itself projective) has its endpoints decided by :func:`decide_in_chart`; with ``endgame.projective`` an affine homotopy that offers ``projective()`` hands
     the paths that do not finish regular (or pass ``switch_norm``) to its projective twin for the endgame, and
     gets them back in affine coordinates (module doc)."""
     eo = opts.endgame
@@ -502,6 +506,8 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
     acc = np.full(N, np.inf)
     tfin = np.zeros(N, dtype=complex)
     order = np.full(N, np.nan)
+    prev = np.full((N, x_te.shape[1]), np.nan, dtype=complex)  # at-infinity paths: the sample before the last
+    prev_t = np.full(N, np.nan, dtype=complex)  # ... and its radius
     h0 = None
     if h is not None:
         h0 = np.where(np.isfinite(h), np.asarray(h, dtype=float) / abs(te), tr.initial_step)
@@ -574,17 +580,22 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
             Y[fin[ns]] = Yr[ns]
             a_[fin[ns]] = upd_[ns]
             st[fin[ns]] = SUCCESS
+        before = eg.xprev
         if proj is not None:  # back to affine coordinates (a path at infinity keeps its last sample)
             last = np.where((st == AT_INFINITY)[:, None] | np.isin(st, FAILURES)[:, None], eg.xlast, Y)
             with np.errstate(all="ignore"):
                 Y = last[:, 1:] / last[:, :1]
+                before = before[:, 1:] / before[:, :1]
             st[_unsolved_in_affine(homotopy, Y, st, eo)] = ENDGAME_FAILED
+        inf_ = st == AT_INFINITY
+        prev[rest[inf_]] = before[inf_]
+        prev_t[rest[inf_]] = eg.tprev[inf_]
         out_x[rest] = Y
         status[rest] = st
         wind[rest] = eg.winding
         acc[rest] = a_
         tfin[rest] = np.where(np.isin(st, (SINGULAR, SUCCESS)), 0.0, eg.t)
-    return out_x, status, wind, acc, tfin, steps, order
+    return out_x, status, wind, acc, tfin, steps, order, (prev, prev_t)
 
 
 def _unsolved_in_affine(homotopy, X, status, eo: EndgameOptions) -> np.ndarray:
@@ -627,7 +638,9 @@ def _stopped_before_first_sample(seg, idx, status, out_x, tfin, te, eo: EndgameO
     tfin[ii] = seg.t[early]
 
 
-def _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order=None):
+def _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order=None, prev=None):
+    """PathResults of the paths ``idx`` from the per-path arrays of :func:`_run` (``prev``: the (samples, radii) of
+    :func:`_finish`, kept for paths at infinity)."""
     n = len(idx)
     res = np.full(n, np.inf)
     cond = np.full(n, np.inf)
@@ -645,10 +658,14 @@ def _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order=No
     order = np.full(n, np.nan) if order is None else order
     out = []
     for k, i in enumerate(idx):
+        # a path at infinity keeps the sample before its last one (PathResult.valuation)
+        before = prev is not None and status[k] == AT_INFINITY and bool(np.all(np.isfinite(prev[0][k]))
+                                                                         and np.isfinite(prev[1][k]))
         out.append(PathResult(index=int(i), status=str(status[k]), endpoint=x[k], t=complex(tfin[k]),
                               residual=float(res[k]), condition=float(cond[k]), accuracy=float(acc[k]),
                               steps=int(steps[k]), winding_number=int(wind[k]), retried=str(retried[k]),
-                              order=float(order[k])))
+                              order=float(order[k]), previous=prev[0][k] if before else None,
+                              previous_t=complex(prev[1][k]) if before else None))
     return out
 
 
@@ -661,16 +678,18 @@ def _run(homotopy, X0, idx, opts: SolveOptions, tr: TrackerOptions):
     acc = np.full(n, np.inf)
     tfin = np.where(st1 == SUCCESS, te, t_fail).astype(complex)
     order = np.full(n, np.nan)
+    prev = (np.full(x.shape, np.nan, dtype=complex), np.full(n, np.nan, dtype=complex))
     ok = np.flatnonzero(st1 == SUCCESS)
     if ok.size:
-        xo, so, wo, ao, to, sto, oo = _finish(homotopy, x[ok], opts, tr, h[ok])
+        xo, so, wo, ao, to, sto, oo, po = _finish(homotopy, x[ok], opts, tr, h[ok])
         x[ok], status[ok], wind[ok], acc[ok], tfin[ok], order[ok] = xo, so, wo, ao, to, oo
+        prev[0][ok], prev[1][ok] = po
         steps[ok] += sto
     if opts.detour_retry and len(idx) == len(X0):  # failures after phase 1: around them to t = 0
         inf = None if getattr(homotopy, "chart", None) is None else (
             lambda Y, a: decide_in_chart(Y, a, o=opts.endgame)[0])
         endgame_detours(homotopy, X0[idx], x, status, steps, retried, acc, tfin, tr, opts, inf)
-    return _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order)
+    return _records(homotopy, idx, x, status, wind, acc, tfin, steps, retried, order, prev)
 
 
 def mp_path(homotopy, x0, index, opts: SolveOptions, tr: TrackerOptions, steps: int = 0):
@@ -680,9 +699,9 @@ def mp_path(homotopy, x0, index, opts: SolveOptions, tr: TrackerOptions, steps: 
     xm, st, ns = mp_track(homotopy, x0, 1.0, opts.endgame.endgame_start, opts.mp_dps, tr)
     if st != SUCCESS:
         return None
-    xo, so, wo, ao, to, sto, oo = _finish(homotopy, xm[None, :], opts, tr)
+    xo, so, wo, ao, to, sto, oo, po = _finish(homotopy, xm[None, :], opts, tr)
     return _records(homotopy, np.array([index]), xo, so, wo, ao, to, sto + ns + steps,
-                    np.array(["mpmath"], dtype=object), oo)[0]
+                    np.array(["mpmath"], dtype=object), oo, po)[0]
 
 
 def run_pipeline(homotopy, X0, opts: SolveOptions):

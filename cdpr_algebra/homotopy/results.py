@@ -89,11 +89,31 @@ class PathResult:
     winding_number: int = 1
     retried: str = ""  # "", "tight" (double precision, tighter settings), "mpmath", "projective" or "gamma"
     order: float = float("nan")  # at_infinity in a chart: y0 ~ t^order (order > 0), estimated by the endgame
+    # at_infinity after Cauchy samples: the path at the sample radius before the last (t), and that radius; None
+    # where the endgame took no two samples (see valuation)
+    previous: np.ndarray | None = None
+    previous_t: complex | None = None
 
     def __post_init__(self):
         ep = np.array(self.endpoint, dtype=complex)
         ep.setflags(write=False)
         object.__setattr__(self, "endpoint", ep)
+        if self.previous is not None:
+            v = np.array(self.previous, dtype=complex)
+            v.setflags(write=False)
+            object.__setattr__(self, "previous", v)
+
+    def valuation(self, cols=slice(None)) -> float:
+        """v in max_j |x_j(t)| ~ |t|^v over the coordinates ``cols`` (a slice or indices), from the endpoint (the last
+        sample) and ``previous`` of a path decided at infinity after Cauchy samples (NaN without them): negative where
+        those coordinates grow without bound as t -> 0 (a block of a Puiseux series, v = -k / c on a path of winding
+        number c), ~0 where they stay finite."""
+        if self.previous is None or self.previous_t is None:
+            return float("nan")
+        with np.errstate(all="ignore"):
+            a = np.max(np.abs(self.endpoint[cols]))
+            b = np.max(np.abs(self.previous[cols]))
+            return float(np.log(a / b) / np.log(abs(self.t) / abs(self.previous_t)))
 
     @property
     def is_success(self) -> bool:
@@ -107,7 +127,7 @@ class PathResult:
         return bool(np.all(np.abs(self.endpoint.imag) <= tol * (1 + np.abs(self.endpoint.real))))
 
     def to_dict(self) -> dict:
-        d = {k: _number(v) for k, v in asdict(self).items() if k != "endpoint"}
+        d = {k: _number(v) for k, v in asdict(self).items() if k not in ("endpoint", "previous", "previous_t")}
         d["endpoint"] = complex_list(self.endpoint)
         return d
 
