@@ -68,8 +68,9 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   ``failed`` with its reason), counted per subproblem (``outcomes``, ``failures``); a subproblem is
   ``complete`` when no path failed and its regular, singular and at-infinity endpoints account for the generic
   count (paths ending on one regular point are failures, ``path_jumping``: a solution is then missing).  A path put
-  at infinity while only its tension multipliers grow (:func:`_tension_infinity_undecided`) is ``endgame_failed``:
-  that limit needs an exactly singular wrench matrix, and a finite equilibrium with huge tensions looks the same.
+  at infinity while only its tension multipliers grow, its pose staying finite (:func:`_tension_infinity_undecided`),
+  is ``endgame_failed``: that limit needs an exactly singular wrench matrix, and a finite equilibrium with huge
+  tensions looks the same.
 
 **Pruning** (seed 000 Sec. 4.1, recorded as the ``skipped`` reason): with D_ij = |A_i - A_j| and
 d_ij = |b_i' - b_j'|, every pair of cables needs D_ij <= rho_i + rho_j + d_ij (B_i and B_j lie within
@@ -118,10 +119,11 @@ import numpy as np
 from cdpr_algebra.model.taut_equations import decode, from_cable_frame, to_cable_frame
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .one_cable import one_cable_equilibria
+from .tension_infinity import POSE_DIVERGES, tension_infinity_undecided as _tension_infinity_undecided  # noqa: F401
 from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, study_roots, track_study_first
 from .unheld_roots import settle_on_unheld_roots
 from .taut_system import FastTautSystem, fast_family
-from cdpr_algebra.homotopy.results import AT_INFINITY, ENDGAME_FAILED, FAILURES, OUTCOMES, SUCCESS, outcome_counts
+from cdpr_algebra.homotopy.results import FAILURES, OUTCOMES, SUCCESS, outcome_counts
 from cdpr_algebra.report.jsonable import jsonable
 from cdpr_algebra.model.pose import angles_from_matrix, rotation_taking
 from cdpr_algebra.model.stability import stability_classes
@@ -468,25 +470,6 @@ def _settle_on_unheld_roots(m, target, res, options, estimates=()):
 
     return settle_on_unheld_roots(ParameterHomotopy(fast_family(m), _generic(m)[0], target), res, options,
                                   RESIDUAL_TOL, estimates)
-
-
-def _tension_infinity_undecided(res, m):
-    """``res`` with every path the endgame put at infinity while only its tension multipliers grow (at its last
-    sample max |lam| exceeds the largest pose coordinate) counted ``endgame_failed`` instead: such a limit needs a
-    wrench matrix exactly singular at a finite pose, which double precision cannot establish, and the same picture
-    is given by a finite equilibrium with huge tensions in a near-double pair across infinity (the two paths circle
-    the pair's branch point at every radius the endgame reaches; measured, twelfth session, on robots with wrench
-    matrices within 3e-5 of singular, tests/large_forces.py: last samples with |pose| < 1 and |lam| 12-120, and a
-    regular real root with |lam| ~ 2e4 that 60-digit Newton confirms).  Paths at infinity through the rotation
-    (isotropic u, v, w) are kept: on seed 002's 8-cable robot all 401 have |pose| >= 80 and |lam| / |pose| <= 0.04."""
-    paths = list(res.track.paths)
-    bad = [i for i, p in enumerate(paths) if p.status == AT_INFINITY and np.all(np.isfinite(p.endpoint))
-           and np.max(np.abs(p.endpoint[12:12 + m])) > np.max(np.abs(p.endpoint[:12]))]
-    if not bad:
-        return res
-    for i in bad:
-        paths[i] = replace(paths[i], status=ENDGAME_FAILED)
-    return replace(res, track=replace(res.track, paths=tuple(paths)))
 
 
 def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, options=None, exclude: bool = True):

@@ -1,0 +1,41 @@
+"""Paths put at infinity while only their tension multipliers grow: undecided (``endgame_failed``) unless their pose
+diverges too (:func:`tension_infinity_undecided`; the DGP's module doc, "Every path ends with one outcome")."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from cdpr_algebra.homotopy.results import AT_INFINITY, ENDGAME_FAILED
+
+__all__ = ["POSE_DIVERGES", "tension_infinity_undecided"]
+
+POSE_DIVERGES = 0.5  # a pose block that grows like |t|^v with v c <= -this (winding number c) is at infinity itself
+
+
+def tension_infinity_undecided(res, m):
+    """``res`` with every path put at infinity while only its tension multipliers grow (max |lam| exceeds the largest
+    pose coordinate at its last sample, and the pose block does not grow: ``PathResult.valuation`` v with v c >
+    -``POSE_DIVERGES``, c its winding number, or unknown) counted ``endgame_failed``: such a limit needs a wrench
+    matrix exactly singular at a finite pose, which double precision cannot establish, and a finite equilibrium with
+    huge tensions in a near-double pair across infinity looks the same (its two paths circle the pair's branch point
+    at every radius the endgame reaches; tests/large_forces.py, twelfth session: |pose| < 1, |lam| 12-120 at the last
+    samples, the root confirmed by 60-digit Newton; twenty-third session: all 14 such paths of the K = 1e5 robots
+    have c = 2, pose valuation 0.00, lam valuation -0.45 .. -0.56).  Kept at infinity: paths whose pose diverges too,
+    through the rotation (seed 002's 8-cable robot: 401 paths, |pose| >= 80, |lam| / |pose| <= 0.04) or the
+    translation (``examples/symmetric_4cables.toml``, {1, 2, 3, 4}: 24 paths, c = 1, both blocks with valuation
+    -1.00, the translation isotropic: tests/test_dgp_symmetric.py; they were ``endgame_failed``)."""
+    paths = list(res.track.paths)
+
+    def pose_stays_finite(p):
+        v = p.valuation(slice(0, 12))
+        return not (np.isfinite(v) and v * p.winding_number <= -POSE_DIVERGES)
+
+    bad = [i for i, p in enumerate(paths) if p.status == AT_INFINITY and np.all(np.isfinite(p.endpoint))
+           and np.max(np.abs(p.endpoint[12:12 + m])) > np.max(np.abs(p.endpoint[:12])) and pose_stays_finite(p)]
+    if not bad:
+        return res
+    for i in bad:
+        paths[i] = replace(paths[i], status=ENDGAME_FAILED)
+    return replace(res, track=replace(res.track, paths=tuple(paths)))

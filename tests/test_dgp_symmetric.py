@@ -1,0 +1,65 @@
+"""Issue 15: a symmetric robot (``examples/symmetric_4cables.toml``: rectangular base and platform with the same two
+mirror planes).  Its taut set {1, 2, 3, 4} has paths whose tension multipliers and translation grow together as
+t -> 0; they were counted ``endgame_failed`` by the rule meant for tensions growing at a finite pose (a wrench matrix
+exactly singular there, which double precision cannot tell from a near-double pair of finite roots with huge
+tensions, ``tests/large_forces.py``).  Now a path whose pose block grows too stays at infinity.
+
+Independent check of those verdicts: at infinity the taut equations reduce to their leading terms in p = p^ / s,
+lam = lam^ / s (s -> 0): the cable lengths |A_i - p - R b_i|^2 = rho_i^2 leave p^ . p^ = 0 (the translation runs off
+along an isotropic complex direction) and the force balance sum lam_i (A_i - B_i) = -Q d leaves sum lam^_i = 0.
+"""
+
+from pathlib import Path
+
+import numpy as np
+
+import cdpr_algebra.dgp.solve as S
+from cdpr_algebra.homotopy.results import AT_INFINITY, PathResult, SolveResult, TrackResult
+from cdpr_algebra.model.robot import load_robot
+from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def test_paths_whose_translation_grows_with_the_tensions_stay_at_infinity():
+    robot = load_robot(ROOT / "examples" / "symmetric_4cables.toml")
+    rho, _ = lengths_and_taut_sets(robot)
+    target = S._normalized(robot, rho, (0, 1, 2, 3))[0]
+    res, failed = S._track(4, target, 0, False)
+    paths = res.track.paths
+    counts = {s: sum(p.status == s for p in paths) for s in {p.status for p in paths}}
+    assert len(paths) == 216 and failed <= 2, counts
+    assert counts.get("endgame_failed", 0) == 0, counts  # 24 before the pose valuation was read
+    grow = [p for p in paths if p.status == AT_INFINITY
+            and np.max(np.abs(p.endpoint[16 - 4:])) > np.max(np.abs(p.endpoint[:12]))]
+    assert len(grow) >= 20, counts
+    for p in grow:
+        x = p.endpoint
+        pos, lam = x[:3], x[12:]
+        assert p.valuation(slice(0, 12)) * p.winding_number <= -S.POSE_DIVERGES
+        assert abs(pos @ pos) / np.sum(np.abs(pos) ** 2) <= 1e-3  # isotropic translation
+        assert abs(lam.sum()) / np.max(np.abs(lam)) <= 1e-3  # balanced tensions
+
+
+def _at_infinity(pose_scale_before, pose_scale_last, winding=1):
+    """A path at infinity with |lam| = 100 at t = 1e-4 (10 at 4e-4) and its pose of the given sizes there."""
+    x = np.concatenate([np.full(12, pose_scale_last), np.full(4, 100.0)]).astype(complex)
+    prev = np.concatenate([np.full(12, pose_scale_before), np.full(4, 10.0)]).astype(complex)
+    return PathResult(0, AT_INFINITY, x, 1e-4 + 0j, 0.0, 1.0, 1e-10, 10, winding_number=winding, previous=prev,
+                      previous_t=4e-4 + 0j)
+
+
+def _outcome(path):
+    res = SolveResult(solutions=(), track=TrackResult(paths=(path,), seconds=0.0, seed=0))
+    return S._tension_infinity_undecided(res, 4).track.paths[0].status
+
+
+def test_tensions_growing_at_a_finite_pose_stay_undecided():
+    assert _outcome(_at_infinity(0.9, 0.9)) == "endgame_failed"  # pose valuation 0
+    assert _outcome(_at_infinity(0.9, 0.9, winding=2)) == "endgame_failed"
+    unknown = _at_infinity(0.9, 0.9)
+    assert _outcome(PathResult(0, AT_INFINITY, unknown.endpoint, unknown.t, 0.0, 1.0, 1e-10, 10)) == "endgame_failed"
+    assert _outcome(_at_infinity(5.0, 20.0)) == AT_INFINITY  # pose valuation -1
+    assert _outcome(_at_infinity(5.0, 20.0, winding=2)) == AT_INFINITY  # -1 = -2 / c
+    assert _outcome(_at_infinity(10.0, 14.0)) == "endgame_failed"  # -0.24: not a power k / c, k >= 1
+
