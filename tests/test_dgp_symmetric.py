@@ -63,3 +63,16 @@ def test_tensions_growing_at_a_finite_pose_stay_undecided():
     assert _outcome(_at_infinity(5.0, 20.0, winding=2)) == AT_INFINITY  # -1 = -2 / c
     assert _outcome(_at_infinity(10.0, 14.0)) == "endgame_failed"  # -0.24: not a power k / c, k >= 1
 
+
+def test_a_route_from_another_generic_instance_completes_the_symmetric_robot():
+    """The same taut set: one path of both gamma routes from the stored generic instance crawls at t ~ 0.25 next to
+    Study's exceptional set and fails, in Study parameters, in the taut system and in double-double alike; its root
+    (well conditioned, |x| ~ 15; PHCpack's blackbox finds it too, measured) is reached by the run from another generic
+    instance (dgp.other_start), whose regular roots settle the failed path.  The account: 184 regular roots, every
+    one proven in a Krawczyk box, and 32 paths at infinity make the generic count 216."""
+    robot = load_robot(ROOT / "examples" / "symmetric_4cables.toml")
+    sub, sols = S.solve_taut_set(robot, robot.lengths, (0, 1, 2, 3))
+    assert sub.outcomes == {"regular": 184, "singular": 0, "at_infinity": 32, "failed": 0}, sub.outcomes
+    assert sub.complete and sub.certified == sub.finite == 184
+    assert sub.retried.get("unheld_root", 0) >= 1  # the settled path
+    assert len(sols) == 2 and all(s.certified for s in sols)

@@ -370,12 +370,14 @@ def test_precise_endgame_budget_decides_seed002_set_1256(monkeypatch):
 def test_last_failed_path_rescued_in_double_double(monkeypatch):
     """Seed 002, taut set {2, 3, 6, 7}: one phase-1 crawl near Study's exceptional set fails in both routes (gamma
     re-run) and in the taut system; left alone it is tracked once more in double-double where double fails (the
-    rescue of --mpmath-retry, automatic for at most AUTO_RESCUE_MAX_FAILED failed paths) and the subproblem is
+    rescue of --mpmath-retry, automatic for at most AUTO_RESCUE_MAX_FAILED failed paths; without the route from
+    another generic instance, which settles it first) and the subproblem is
     complete, every endpoint certified.  Without the automatic rescue the path stays failed."""
     import cdpr_algebra.dgp.solve as S
     from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
+    monkeypatch.setattr(S, "OTHER_START", False)  # the route from another generic instance settles it first
     sub, _ = S.solve_taut_set(robot, robot.lengths, (1, 2, 5, 6), certify=False)
     assert sub.complete and sub.outcomes["failed"] == 0 and sub.retried.get("study_extended") == 1
     assert sub.certified == sub.outcomes["regular"] == 216

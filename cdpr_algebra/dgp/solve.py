@@ -58,7 +58,8 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   the same parameter path, ``STUDY_RETRACK``, :func:`.study_retrack.retrack_failed_in_study`.)  If one or two failed
   paths remain (at most ``RERUN_MAX_FAILED`` = 4), the subproblem is re-run once with a random gamma and another seed,
   the run with fewer failures is kept and its failed paths are settled on the other run's regular roots that none of
-  its paths holds (:func:`_settle_on_other_runs_roots`) (each run's failed paths are first settled, where Newton's method from
+  its paths holds (:func:`_settle_on_other_runs_roots`), then on those of a run from another generic instance
+  (:mod:`.other_start`) (each run's failed paths are first settled, where Newton's method from
   their last estimates, and in Study parameters from the Study run's last points, :func:`.study_retrack.study_roots`,
   finds regular roots that no other path holds, :mod:`.unheld_roots`); with ``retry_mpmath`` in the options (``cdpr dgp --mpmath-retry``), the
   paths still failed are tracked once more in Study parameters, in compiled double-double
@@ -119,6 +120,7 @@ import numpy as np
 from cdpr_algebra.model.taut_equations import decode, from_cable_frame, to_cable_frame
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .one_cable import one_cable_equilibria
+from .other_start import other_generic_instance
 from .tension_infinity import POSE_DIVERGES, tension_infinity_undecided as _tension_infinity_undecided  # noqa: F401
 from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, study_roots, track_study_first
 from .unheld_roots import settle_on_unheld_roots
@@ -402,6 +404,7 @@ def _solve_one_cable(robot, rho, i):
 MP_RETRY_PATHS = 4  # with retry_mpmath: failed paths per subproblem run tracked again in double-double (Study)
 RERUN_MAX_FAILED = 4  # re-run a subproblem with a new gamma only when at most this many of its paths failed
 AUTO_RESCUE_MAX_FAILED = 2  # ... then the extended-precision rescue of --mpmath-retry for at most this many left
+OTHER_START = True  # ... after the gamma re-run, a run from another generic instance settles failed paths too
 # predictor tolerance of the tracker (engine default 1e-5; the corrector still ends at 1e-8, with a third Newton
 # update where two do not reach it).  Measured on seed 000 Tests 2 and 3 (tenth session): 1e-4 -> 3e-4 takes
 # Test 3's phase 1 from 533k to 457k steps; 1e-3 (413k) left one more subproblem of Test 2 incomplete.
@@ -426,11 +429,12 @@ def default_options(extended: bool = False):
                         detour_retry=True)
 
 
-def _track(m, target, seed, gamma, options=None):
-    """Parameter homotopy from the stored generic set (see the module doc).  Returns (result, failed paths)."""
+def _track(m, target, seed, gamma, options=None, start=None):
+    """Parameter homotopy from the stored generic set (see the module doc), or from ``start`` = (parameters, all
+    solutions) of another generic instance.  Returns (result, failed paths)."""
     from cdpr_algebra.homotopy.many_targets import solve_targets
 
-    p_gen, X_gen = _generic(m)
+    p_gen, X_gen = _generic(m) if start is None else start
     # no in-place double retries: suspect paths are re-tracked in projective coordinates, then in Study parameters;
     # with retry_mpmath, paths still failed there are tracked in Study parameters in double-double where double
     # precision fails (dgp.study_retrack, at most MP_RETRY_PATHS per run), not by the engine's mpmath tracker in
@@ -581,6 +585,11 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
             res, failed, other, route = res2, failed2, res, (seed + 7919, True)
         if failed:  # the other run's regular roots that no path of this one holds settle its failed paths
             res, failed = _settle_on_other_runs_roots(m, target, res, other, options)
+        start = other_generic_instance(lambda p: _track(m, p, seed, True)[0], _generic(m)[0], len(_generic(m)[1])) \
+            if failed and OTHER_START else None
+        if start is not None:  # ... and those of a run from another generic instance (dgp.other_start)
+            res, failed = _settle_on_other_runs_roots(m, target, res, _track(m, target, seed, True, options, start)[0],
+                                                      options)
     if 0 < failed <= AUTO_RESCUE_MAX_FAILED and not (options is not None and options.retry_mpmath):
         res, failed = _rescue_last_failed_paths(m, target, res, *route, options)
     X = np.array([s.x for s in res.solutions]).reshape(-1, fam.n)
