@@ -488,9 +488,9 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
     NaN or None: the tracker's initial step).  Returns per-path arrays (x, status, winding, accuracy, t, steps,
     order, (prev, prev_t)): ``prev`` the sample before the last of the paths decided at infinity after Cauchy
     samples (in the coordinates of x), ``prev_t`` its radius (NaN elsewhere).  A homotopy with a ``chart`` (it is
-    itself projective) has its endpoints decided by :func:`decide_in_chart`; with ``endgame.projective`` an affine homotopy that offers ``projective()`` hands
-    the paths that do not finish regular (or pass ``switch_norm``) to its projective twin for the endgame, and
-    gets them back in affine coordinates (module doc)."""
+    itself projective) has its endpoints decided by :func:`decide_in_chart`; with ``endgame.projective`` an affine
+    homotopy that offers ``projective()`` hands the paths that do not finish regular (or pass ``switch_norm``) to
+    its projective twin for the endgame, and gets them back in affine coordinates (module doc)."""
     eo = opts.endgame
     te = eo.endgame_start
     N = len(x_te)
