@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 import cdpr_algebra.dgp.solve as S
+from cdpr_algebra.dgp.tension_infinity import POSE_DIVERGES, tension_infinity_undecided
 from cdpr_algebra.homotopy.results import AT_INFINITY, PathResult, SolveResult, TrackResult
 from cdpr_algebra.model.robot import load_robot
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
@@ -36,7 +37,7 @@ def test_paths_whose_translation_grows_with_the_tensions_stay_at_infinity():
     for p in grow:
         x = p.endpoint
         pos, lam = x[:3], x[12:]
-        assert p.valuation(slice(0, 12)) * p.winding_number <= -S.POSE_DIVERGES
+        assert p.valuation(slice(0, 12)) * p.winding_number <= -POSE_DIVERGES
         assert abs(pos @ pos) / np.sum(np.abs(pos) ** 2) <= 1e-3  # isotropic translation
         assert abs(lam.sum()) / np.max(np.abs(lam)) <= 1e-3  # balanced tensions
 
@@ -51,7 +52,7 @@ def _at_infinity(pose_scale_before, pose_scale_last, winding=1):
 
 def _outcome(path):
     res = SolveResult(solutions=(), track=TrackResult(paths=(path,), seconds=0.0, seed=0))
-    return S._tension_infinity_undecided(res, 4).track.paths[0].status
+    return tension_infinity_undecided(res, 4).track.paths[0].status
 
 
 def test_tensions_growing_at_a_finite_pose_stay_undecided():

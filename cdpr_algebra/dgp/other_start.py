@@ -31,16 +31,18 @@ OTHER_START_RADIUS = 0.25  # p_new = p_gen + radius z, z standard complex normal
 _CACHE: dict = {}
 
 
-def other_generic_instance(track_to, p_gen, count: int, seed: int = OTHER_START_SEED):
+def other_generic_instance(track_to, p_gen, X_gen, seed: int = OTHER_START_SEED):
     """(p_new, X_new): random complex parameters near the stored generic instance ``p_gen`` and all their solutions
-    (taut coordinates), from ``track_to(p_new)``, the DGP's run (:func:`.solve._track`) of the stored generic
-    solutions to p_new as its target; None when any path fails or two end together (the ``count`` solutions would
-    not be known to be all).  Cached per (size of p_gen, count, seed): one stored instance per m."""
+    (taut coordinates), from ``track_to(p_new, seed)``, the DGP's run (:func:`.solve._track`) of the stored generic
+    solutions ``X_gen`` to p_new as its target; None when any path fails or two end together (they would not be known
+    to be all).  Drawn and tracked with ``seed`` alone, so the same whichever subproblem asks first; cached per
+    (size of p_gen, number of solutions, seed): one stored instance per m."""
+    count = len(X_gen)
     key = (len(p_gen), count, seed)
     if key not in _CACHE:
         rng = np.random.default_rng(seed)
         p_new = p_gen + OTHER_START_RADIUS * (rng.normal(size=p_gen.shape) + 1j * rng.normal(size=p_gen.shape))
-        res = track_to(p_new)
+        res = track_to(p_new, seed)
         paths = res.track.paths
         regular = [s for s in res.solutions if not s.singular]
         ok = all(p.status == SUCCESS for p in paths) and len(paths) == len(regular) == count

@@ -69,7 +69,8 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   ``failed`` with its reason), counted per subproblem (``outcomes``, ``failures``); a subproblem is
   ``complete`` when no path failed and its regular, singular and at-infinity endpoints account for the generic
   count (paths ending on one regular point are failures, ``path_jumping``: a solution is then missing).  A path put
-  at infinity while only its tension multipliers grow, its pose staying finite (:func:`_tension_infinity_undecided`),
+  at infinity while only its tension multipliers grow, its pose staying finite
+  (:func:`.tension_infinity.tension_infinity_undecided`),
   is ``endgame_failed``: that limit needs an exactly singular wrench matrix, and a finite equilibrium with huge
   tensions looks the same.
 
@@ -121,7 +122,7 @@ from cdpr_algebra.model.taut_equations import decode, from_cable_frame, to_cable
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .one_cable import one_cable_equilibria
 from .other_start import other_generic_instance
-from .tension_infinity import POSE_DIVERGES, tension_infinity_undecided as _tension_infinity_undecided  # noqa: F401
+from .tension_infinity import tension_infinity_undecided
 from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, study_roots, track_study_first
 from .unheld_roots import settle_on_unheld_roots
 from .taut_system import FastTautSystem, fast_family
@@ -448,7 +449,7 @@ def _track(m, target, seed, gamma, options=None, start=None):
         (res,) = solve_targets(fast_family(m), p_gen, X_gen[rows], [target], seed=seed,
                                options=replace(options, retry_mpmath=False, detour_retry=options.detour_retry and detour),
                                gamma=gamma, retries=PROJECTIVE_RETRIES)
-        return _tension_infinity_undecided(res, m)
+        return tension_infinity_undecided(res, m)
 
     estimates = {}  # the Study run's last points of the paths it left failed (or whose endpoints it refused)
     if STUDY_FIRST:
@@ -585,7 +586,7 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
             res, failed, other, route = res2, failed2, res, (seed + 7919, True)
         if failed:  # the other run's regular roots that no path of this one holds settle its failed paths
             res, failed = _settle_on_other_runs_roots(m, target, res, other, options)
-        start = other_generic_instance(lambda p: _track(m, p, seed, True)[0], _generic(m)[0], len(_generic(m)[1])) \
+        start = other_generic_instance(lambda p, s: _track(m, p, s, True)[0], *_generic(m)) \
             if failed and OTHER_START else None
         if start is not None:  # ... and those of a run from another generic instance (dgp.other_start)
             res, failed = _settle_on_other_runs_roots(m, target, res, _track(m, target, seed, True, options, start)[0],
