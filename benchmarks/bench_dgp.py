@@ -40,6 +40,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "benchmarks"), str(ROOT)]
 
+from cdpr_algebra.dgp.normalization import normalized_problem  # noqa: E402
 from cdpr_algebra.dgp.solve import available_m, dgp  # noqa: E402
 from cdpr_algebra.homotopy.endgame import EndgameOptions  # noqa: E402
 from cdpr_algebra.model.robot import load_robot  # noqa: E402
@@ -79,7 +80,7 @@ def phc_compare(path, cable_sets, repeat, timeout):
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bench_homotopy import phc_run
 
-    from cdpr_algebra.dgp.solve import _normalized, solve_taut_set
+    from cdpr_algebra.dgp.solve import solve_taut_set
     from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
     from cdpr_algebra.model.taut_equations import taut_family
 
@@ -92,7 +93,7 @@ def phc_compare(path, cable_sets, repeat, timeout):
             t0 = time.perf_counter()
             sub, sols = solve_taut_set(robot, rho, cables)
             ts.append(time.perf_counter() - t0)
-        target = _normalized(robot, rho, cables)[0]
+        target = normalized_problem(robot, rho, cables)[0]
         res = phc_run(taut_family(len(cables)), target, timeout=timeout)
         taut = [c + 1 for c in cables]
         ours = (f"ours {statistics.median(ts):.3f} s ({sub.paths} paths, {sub.finite} finite, {sub.real} real, "

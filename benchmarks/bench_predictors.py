@@ -28,6 +28,7 @@ import argparse
 import sys
 from pathlib import Path
 
+from cdpr_algebra.dgp.normalization import normalized_problem
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -45,7 +46,7 @@ def _homotopy():
     robot = load_robot(ROOT / "examples" / "seed000_test3.toml")
     rho, _ = lengths_and_taut_sets(robot)
     cables = (0, 2, 4, 5)
-    target, *_ = S._normalized(robot, rho, cables)
+    target, *_ = normalized_problem(robot, rho, cables)
     p_gen, X_gen = S._generic(len(cables))
     (H,) = parameter_homotopy(S.fast_family(len(cables)), p_gen, target)
     return H, X_gen

@@ -14,6 +14,7 @@ residual is checked), regular when delta != 0.
 
 import numpy as np
 
+from cdpr_algebra.dgp.normalization import normalized_coordinates, normalized_problem, world_coordinates
 from cdpr_algebra.model.robot import Robot
 from equilibria import hang_platform
 
@@ -131,8 +132,8 @@ def root_of_the_solved_system(robot, cables, p, R, tau, dps: int = 60):
 
     m = len(cables)
     rho = robot.lengths
-    target, c, L, Rw, cb = S._normalized(robot, rho, cables)
-    x0 = S._normalized_coordinates(encode(p, R, tau / rho[list(cables)])[None], m, c, L, Rw, cb, robot.load)[0]
+    target, c, L, Rw, cb = normalized_problem(robot, rho, cables)
+    x0 = normalized_coordinates(encode(p, R, tau / rho[list(cables)])[None], m, c, L, Rw, cb, robot.load)[0]
     F, J, _ = taut_family(m).mp_functions()
     with mpmath.workdps(dps):
         pt = [mpmath.mpc(complex(v)) for v in target]
@@ -142,7 +143,7 @@ def root_of_the_solved_system(robot, cables, p, R, tau, dps: int = 60):
             x = x + d
             if mpmath.norm(d) < mpmath.mpf(10) ** -40:
                 X = np.array([[complex(v) for v in x]])
-                pw, Rw_, lam = decode(S._world_coordinates(X, m, c, L, Rw, cb, robot.load), m)
+                pw, Rw_, lam = decode(world_coordinates(X, m, c, L, Rw, cb, robot.load), m)
                 return pw[0].real, Rw_[0].real, lam[0].real * rho[list(cables)]
     return None
 

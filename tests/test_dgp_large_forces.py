@@ -9,6 +9,7 @@ is never dropped silently because it is large; and where the paths all finish, i
 import numpy as np
 import pytest
 
+from cdpr_algebra.dgp.normalization import normalized_coordinates, normalized_problem, world_coordinates
 from cdpr_algebra.dgp.solve import solve_taut_set
 from large_forces import large_force_robot, matches, root_of_the_robot_system, root_of_the_solved_system
 
@@ -115,7 +116,7 @@ def test_tensions_alone_going_to_infinity_is_undecided(m, seed):
 def test_far_centre_of_mass_is_returned_and_complete():
     """m = 5, K = 1e5: the construction puts the centre of mass ~1e4 robot sizes from the attachment points.
     Normalized by robot.size (which includes |b'_i - g'|) every one of the 140 paths failed (thirteenth session);
-    normalized by the cable geometry's own scale (dgp.solve._normalized) all finish and the equilibrium is
+    normalized by the cable geometry's own scale (dgp.normalization.normalized_problem) all finish and the equilibrium is
     returned with its tensions and certified."""
     robot, p, R, tau = large_force_robot(5, 1e5, 380)
     assert np.linalg.norm(robot.com - robot.platform.mean(axis=0)) > 1e3 * np.ptp(robot.base, axis=0).max()
@@ -197,7 +198,7 @@ def test_far_platform_frame_endpoints_are_certified():
 
 
 def test_normalized_coordinates_invert_world_coordinates():
-    """dgp.solve's map to the normalized problem (_normalized_coordinates) and back (_world_coordinates) are inverse
+    """dgp.normalization's map to the normalized problem (normalized_coordinates) and back (world_coordinates) are inverse
     on random complex rows, and the constructed equilibrium of a far-centre-of-mass robot maps to a root of the
     normalized system the tracker solves (residual at rounding level)."""
     import cdpr_algebra.dgp.solve as D
@@ -205,15 +206,15 @@ def test_normalized_coordinates_invert_world_coordinates():
 
     m = 5
     robot, p, R, tau = large_force_robot(m, 1e5, 380)
-    target, c, L, Rw, cb = D._normalized(robot, robot.lengths, range(m))
+    target, c, L, Rw, cb = normalized_problem(robot, robot.lengths, range(m))
     rng = np.random.default_rng(7)
     X = rng.normal(size=(4, 12 + m)) + 1j * rng.normal(size=(4, 12 + m))
-    for Y in (D._world_coordinates(D._normalized_coordinates(X, m, c, L, Rw, cb, robot.load), m, c, L, Rw, cb,
+    for Y in (world_coordinates(normalized_coordinates(X, m, c, L, Rw, cb, robot.load), m, c, L, Rw, cb,
                                    robot.load),
-              D._normalized_coordinates(D._world_coordinates(X, m, c, L, Rw, cb, robot.load), m, c, L, Rw, cb,
+              normalized_coordinates(world_coordinates(X, m, c, L, Rw, cb, robot.load), m, c, L, Rw, cb,
                                         robot.load)):
         assert np.allclose(Y, X, rtol=0, atol=1e-9 * np.abs(X).max())
-    x = D._normalized_coordinates(encode(p, R, tau / robot.lengths)[None], m, c, L, Rw, cb, robot.load)
+    x = normalized_coordinates(encode(p, R, tau / robot.lengths)[None], m, c, L, Rw, cb, robot.load)
     F, _ = D.fast_family(m).evaluate_and_jacobian(x.astype(complex), target)
     assert np.abs(F).max() <= 1e-9 * np.abs(x).max() ** 2
 

@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 
 import cdpr_algebra.dgp.solve as S
+from cdpr_algebra.dgp.normalization import normalized_problem
 from cdpr_algebra.dgp.tension_infinity import POSE_DIVERGES, tension_infinity_undecided
 from cdpr_algebra.homotopy.results import AT_INFINITY, PathResult, SolveResult, TrackResult
 from cdpr_algebra.model.robot import load_robot
@@ -25,7 +26,7 @@ ROOT = Path(__file__).resolve().parents[1]
 def test_paths_whose_translation_grows_with_the_tensions_stay_at_infinity():
     robot = load_robot(ROOT / "examples" / "symmetric_4cables.toml")
     rho, _ = lengths_and_taut_sets(robot)
-    target = S._normalized(robot, rho, (0, 1, 2, 3))[0]
+    target = normalized_problem(robot, rho, (0, 1, 2, 3))[0]
     res, failed = S._track(4, target, 0, False)
     paths = res.track.paths
     counts = {s: sum(p.status == s for p in paths) for s in {p.status for p in paths}}

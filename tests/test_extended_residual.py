@@ -11,7 +11,8 @@ import mpmath
 import numpy as np
 import pytest
 
-from cdpr_algebra.dgp.solve import _generic, _normalized, default_options, fast_family
+from cdpr_algebra.dgp.normalization import normalized_problem
+from cdpr_algebra.dgp.solve import _generic, default_options, fast_family
 from cdpr_algebra.generated.taut_residual_dd import taut_residual
 from cdpr_algebra.homotopy import compiled, double_double as dd
 from cdpr_algebra.homotopy.endgame import EndgameOptions, _track_to_endgame
@@ -113,7 +114,7 @@ def _hard_subproblem():
     rho, _ = lengths_and_taut_sets(robot)
     cables = (1, 2, 3, 4)
     fam = fast_family(len(cables))
-    p0 = _normalized(robot, rho, cables)[0]
+    p0 = normalized_problem(robot, rho, cables)[0]
     p1, X = _generic(len(cables))
     return fam, p1, p0, X
 

@@ -6,6 +6,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from cdpr_algebra.dgp.normalization import normalized_problem, world_coordinates
 from cdpr_algebra import load_robot
 from cdpr_algebra.dgp import solve as S
 from cdpr_algebra.dgp.kernels import study_fj, study_fjt
@@ -67,7 +68,7 @@ def test_retracked_paths_end_where_the_taut_paths_end(cables, gamma):
     robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
     rho = np.asarray(robot.lengths, float)
     m = len(cables)
-    target = S._normalized(robot, rho, cables)[0]
+    target = normalized_problem(robot, rho, cables)[0]
     seed = 5
     res, failed = S._track(m, target, seed, gamma=gamma)
     assert failed == 0
@@ -89,7 +90,7 @@ def test_retrack_never_merges():
     also keeping its success (so its point is taken), the other rescued only when its point is new."""
     robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
     rho = np.asarray(robot.lengths, float)
-    target = S._normalized(robot, rho, (0, 1))[0]
+    target = normalized_problem(robot, rho, (0, 1))[0]
     res, _ = S._track(2, target, 0, gamma=False)
     paths = list(res.track.paths)
     # path 1 is marked failed but path 0 is given path 1's endpoint: the point path 1 reaches is already held
@@ -133,7 +134,7 @@ def test_ill_conditioned_study_limits_are_rescued_and_proven(monkeypatch):
     robot = load_robot(ROOT / "examples" / "seed000_test2.toml")
     rho = np.asarray(robot.lengths, float)
     cables = (0, 1, 3, 5)
-    target, c, L, Rw, cb = S._normalized(robot, rho, cables)
+    target, c, L, Rw, cb = normalized_problem(robot, rho, cables)
     monkeypatch.setattr(S, "STUDY_FIRST", False)  # the taut system first, then the re-track of its failures
     monkeypatch.setattr(S, "STUDY_RETRACK", False)
     monkeypatch.setattr(S, "UNHELD_ROOTS", False)  # the re-track's own rules are tested here (dgp.unheld_roots: 25 of
@@ -146,7 +147,7 @@ def test_ill_conditioned_study_limits_are_rescued_and_proven(monkeypatch):
     kept = [p for p in again.track.paths if p.retried == "study"]
     assert len(kept) == rescued and max(p.condition for p in kept) > 1e10  # beyond the endgame's regular bound
     regular = np.array([p.endpoint for p in again.track.paths if p.status == SUCCESS])
-    Z = S._world_coordinates(regular, 4, c, L, Rw, cb, robot.load)
+    Z = world_coordinates(regular, 4, c, L, Rw, cb, robot.load)
     ((boxes, over),) = certify_endpoints(robot, rho, [(list(cables), Z)], [True])
     assert boxes.proven.all() and not over.any()
     # without the singular limits of one sheet (the fifteenth session's rule) they stay failed
@@ -172,7 +173,7 @@ def _fallback_case(monkeypatch, study_failed, taut_points):
     from cdpr_algebra.homotopy.results import PathResult, SolveResult, TrackResult
 
     robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
-    target = S._normalized(robot, np.asarray(robot.lengths, float), (0, 1))[0]
+    target = normalized_problem(robot, np.asarray(robot.lengths, float), (0, 1))[0]
     p_gen, X_gen = S._generic(2)
     real = SR.retrack_failed_in_study
     seen = {}
@@ -257,7 +258,7 @@ def test_study_limits_on_the_quadric_n_zero_are_at_infinity(monkeypatch):
 
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
     rho = np.asarray(robot.lengths, float)
-    target = S._normalized(robot, rho, (0, 1, 4))[0]
+    target = normalized_problem(robot, rho, (0, 1, 4))[0]
     monkeypatch.setattr(S, "STUDY_FIRST", False)  # the taut system first, then the re-track of its failures
     res, failed = S._track(3, target, 0, gamma=False)
     assert failed == 0 and outcome_counts(res.track.paths) == {"regular": 100, "singular": 0, "at_infinity": 56,
@@ -331,7 +332,7 @@ def test_precise_endgame_decides_seed002_paths_at_infinity(monkeypatch):
     from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
-    target = S._normalized(robot, robot.lengths, (0, 2, 4, 7))[0]
+    target = normalized_problem(robot, robot.lengths, (0, 2, 4, 7))[0]
     res, failed = S._track(4, target, 0, gamma=False)
     paths = res.track.paths
     decided = [p for p in paths if p.retried == SR.PRECISE_ENDGAME]
@@ -355,7 +356,7 @@ def test_precise_endgame_budget_decides_seed002_set_1256(monkeypatch):
     from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
-    target = S._normalized(robot, robot.lengths, (0, 1, 4, 5))[0]
+    target = normalized_problem(robot, robot.lengths, (0, 1, 4, 5))[0]
     res, failed = S._track(4, target, 0, gamma=False)
     counts = outcome_counts(res.track.paths)
     assert failed == 0 and counts["at_infinity"] == 8 and counts["regular"] == 208

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 import sympy as sp
 
+from cdpr_algebra.dgp.normalization import normalized_problem
 from cdpr_algebra.dgp.unheld_roots import UNHELD_ROOT, settle_on_unheld_roots
 from cdpr_algebra.homotopy.endgame import SolveOptions
 from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
@@ -130,7 +131,7 @@ def test_roots_reached_in_study_parameters_settle_two_failed_paths(monkeypatch):
 
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
     cables = (0, 2, 3, 4, 7)
-    target = S._normalized(robot, robot.lengths, cables)[0]
+    target = normalized_problem(robot, robot.lengths, cables)[0]
     res, failed = S._track(5, target, 0, gamma=False)
     paths = res.track.paths
     assert failed == 0 and outcome_counts(paths) == {"regular": 140, "singular": 0, "at_infinity": 0, "failed": 0}
@@ -161,7 +162,7 @@ def test_without_the_study_roots_those_paths_stay_failed(monkeypatch):
     from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
-    target = S._normalized(robot, robot.lengths, (0, 2, 3, 4, 7))[0]
+    target = normalized_problem(robot, robot.lengths, (0, 2, 3, 4, 7))[0]
     monkeypatch.setattr(SR, "PRECISE_ENDGAME_PATHS", 0)
     monkeypatch.setattr(S, "study_roots", lambda *a: np.zeros((0, 17), dtype=complex))
     res, failed = S._track(5, target, 0, gamma=False)
@@ -176,7 +177,7 @@ def test_the_endgame_in_double_double_reaches_the_same_two_roots():
     from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
-    target = S._normalized(robot, robot.lengths, (0, 2, 3, 4, 7))[0]
+    target = normalized_problem(robot, robot.lengths, (0, 2, 3, 4, 7))[0]
     res, failed = S._track(5, target, 0, gamma=False)
     got = [p for p in res.track.paths if p.retried == SR.PRECISE_ENDGAME]
     assert failed == 0 and len(got) == 2 and all(p.status == "success" for p in got)
@@ -196,7 +197,7 @@ def test_failed_paths_settle_on_the_roots_of_the_other_route():
     from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(ROOT / "examples" / "seed000_test1.toml")
-    target = S._normalized(robot, robot.lengths, (0, 1, 2))[0]
+    target = normalized_problem(robot, robot.lengths, (0, 1, 2))[0]
     res, failed = S._track(3, target, 0, gamma=False)
     assert failed == 0
     paths = list(res.track.paths)

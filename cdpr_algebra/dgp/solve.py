@@ -118,8 +118,9 @@ from pathlib import Path
 
 import numpy as np
 
-from cdpr_algebra.model.taut_equations import decode, from_cable_frame, to_cable_frame
+from cdpr_algebra.model.taut_equations import decode
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
+from .normalization import normalized_problem, world_coordinates
 from .one_cable import one_cable_equilibria
 from .other_start import other_generic_instance
 from .tension_infinity import tension_infinity_undecided
@@ -128,7 +129,7 @@ from .unheld_roots import settle_on_unheld_roots
 from .taut_system import FastTautSystem, fast_family
 from cdpr_algebra.homotopy.results import FAILURES, OUTCOMES, SUCCESS, outcome_counts
 from cdpr_algebra.report.jsonable import jsonable
-from cdpr_algebra.model.pose import angles_from_matrix, rotation_taking
+from cdpr_algebra.model.pose import angles_from_matrix
 from cdpr_algebra.model.stability import stability_classes
 
 __all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune", "FastTautSystem",
@@ -349,24 +350,6 @@ def prune(robot, rho, cables) -> str | None:
     return None
 
 
-def _normalized(robot, rho, cables):
-    """(parameters of the normalized problem, c, L, Rw, cb): world coordinates x' = Rw (x - c) / L with Rw taking
-    the load direction to -z (the direction of the stored generic sets: a straight parameter path from there never
-    passes near a vanishing load), load 1, and the platform frame moved to the centroid cb of the platform points
-    (b'_i - cb, g' - cb: the pose's origin is then at the cables' attachment points wherever the robot file puts it).
-    L (:attr:`Robot.cable_scale`) is the size of the cable geometry alone: a centre of mass far from the attachment points
-    (a long boom, or robots built with huge internal forces, tests/large_forces.py) does not shrink it.  Measured
-    (thirteenth session, m = 4 and 5, K = 1e5, g' 1e4-1.5e5 sizes away): 0-2 failed paths instead of 138-194 with
-    the robot's size, which includes |b'_i - g'|."""
-    c, cb = robot.cable_frame
-    L = robot.cable_scale
-    Rw = rotation_taking(robot.load_direction, np.array([0.0, 0.0, -1.0]))
-    idx = list(cables)
-    params = np.concatenate([((robot.base[idx] - c) @ Rw.T / L).ravel(), (rho[idx] / L) ** 2,
-                             ((robot.platform[idx] - cb) / L).ravel(), (robot.com - cb) / L, [0.0, 0.0, -1.0]])
-    return params, c, L, Rw, cb
-
-
 def _slack_ok(robot, rho, cables, p, R) -> bool:
     others = [j for j in range(robot.n) if j not in cables]
     if not others:
@@ -570,7 +553,7 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
                              f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})",
                              complete=False), [], None
     fam = fast_family(m)
-    target, c, L, Rw, cb = _normalized(robot, rho, cables)
+    target, c, L, Rw, cb = normalized_problem(robot, rho, cables)
     res, failed = _track(m, target, seed, gamma=False, options=options)
     # another route (gamma trick) when one or two paths failed, and the run with fewer failures is kept (each run is
     # a whole account).  Only a run with no failure completes the subproblem, and a new route seldom gives one: the
@@ -608,7 +591,7 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     tol = TENSION_RTOL * robot.load
     sols = []
     idx = list(cables)
-    for x in _world_coordinates(Xr, m, c, L, Rw, cb, robot.load):
+    for x in world_coordinates(Xr, m, c, L, Rw, cb, robot.load):
         p, R, lam = decode(x, m)
         p, R, lam = p[0], R[0], lam[0]
         if np.max(np.abs(R.T @ R - np.eye(3))) > 1e-6 or np.linalg.det(R) <= 0:
@@ -633,7 +616,7 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     sub = DGPSubproblem(taut1, len(paths), finite, int(np.sum(real)), len(sols), time.perf_counter() - t0,
                         outcomes=outcomes, failures=failures, complete=False, generic_count=generic, retried=retried)
     regular = np.array([s.x for s in res.solutions if not s.singular]).reshape(-1, fam.n)
-    return sub, sols, _world_coordinates(regular, m, c, L, Rw, cb, robot.load)
+    return sub, sols, world_coordinates(regular, m, c, L, Rw, cb, robot.load)
 
 
 def _rescue_last_failed_paths(m, target, res, seed, gamma, options):
@@ -660,21 +643,6 @@ def _settle_on_other_runs_roots(m, target, res, other, options):
     options = default_options() if options is None else options
     return _settle_on_unheld_roots(m, target, res, options,
                                    [p.endpoint for p in other.track.paths if p.status == SUCCESS])
-
-
-def _world_coordinates(X, m, c, L, Rw, cb, Q):
-    """Roots (p^, u^, v^, w^, lam^) of the normalized problem (complex rows) -> (p, u, v, w, lam) of the robot:
-    columns of R = Rw^T R^, p = c + L Rw^T p^ - R cb, lam = Q lam^ / L (see :func:`_normalized`)."""
-    Y = np.hstack([L * (X[:, 0:3] @ Rw), X[:, 3:6] @ Rw, X[:, 6:9] @ Rw, X[:, 9:12] @ Rw, Q * X[:, 12:12 + m] / L])
-    return from_cable_frame(Y, (c, cb))
-
-
-def _normalized_coordinates(X, m, c, L, Rw, cb, Q):
-    """The inverse of :func:`_world_coordinates`: rows (p, u, v, w, lam) of the robot -> (p^, u^, v^, w^, lam^),
-    u^ = Rw u (and v, w), p^ = Rw (p + R cb - c) / L, lam^ = L lam / Q."""
-    Y = to_cable_frame(X, (c, cb))
-    return np.hstack([Y[:, 0:3] @ Rw.T / L, Y[:, 3:6] @ Rw.T, Y[:, 6:9] @ Rw.T, Y[:, 9:12] @ Rw.T,
-                      L * Y[:, 12:12 + m] / Q])
 
 
 def _with_endpoint_certificates(robot, rho, items) -> list:
