@@ -221,7 +221,8 @@ def test_cli_json_contract(tmp_path, capsys):
     for sub in out["subproblems"]:
         assert set(sub) == {"taut", "status", "paths", "outcomes", "failures", "complete", "generic_count", "finite",
                             "real", "admissible", "failed_paths", "seconds", "skipped", "certified", "certified_real",
-                            "uncertified", "settled", "admissible_complete", "excluded", "retried"}
+                            "uncertified", "settled", "admissible_complete", "excluded", "retried",
+                            "positive_dimensional"}
         assert sub["status"] == "complete"
         assert sum(sub["outcomes"].values()) == sub["paths"] == sub["generic_count"] and sub["complete"]
         assert sub["certified"] in (None, sub["outcomes"]["regular"]) and sub["uncertified"] == {}

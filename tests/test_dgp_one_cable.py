@@ -3,7 +3,8 @@
 import numpy as np
 
 from cdpr_algebra import Robot, load_robot
-from cdpr_algebra.dgp.one_cable import _about, one_cable_equilibria
+from cdpr_algebra.dgp.one_cable import one_cable_equilibria
+from cdpr_algebra.model.pose import rotation_about
 from cdpr_algebra.model.statics import equilibrium_tensions
 
 
@@ -38,7 +39,7 @@ def test_arcs_are_where_every_other_cable_is_slack():
         (lo, hi), *_ = s.theta_arcs
         assert hi - lo < 2 * np.pi
         for theta in np.linspace(-np.pi, np.pi, 721):
-            R = _about(d, theta) @ s.rotation
+            R = rotation_about(d, theta) @ s.rotation
             B1 = robot.base[0] + (s.position + s.rotation @ robot.platform[0] - robot.base[0])
             B = B1 + (robot.platform - robot.platform[0]) @ R.T
             slack = np.all(np.linalg.norm(B[1:] - robot.base[1:], axis=1) <= robot.lengths[1:] * (1 + 1e-9))

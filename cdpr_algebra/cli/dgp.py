@@ -57,7 +57,9 @@ def run(args) -> int:
         o = sub.outcomes
         what = f"skipped ({sub.skipped})" if sub.skipped else \
             (f"{sub.paths} paths ({o['regular']} regular, {o['singular']} singular, {o['at_infinity']} at infinity, "
-             f"{o['failed']} failed), {sub.real} real, {sub.admissible} admissible")
+             f"{o['failed']} failed), {sub.real} real, {sub.admissible} admissible"
+             + (f", {len(sub.family.members)} admissible famil{'y' if len(sub.family.members) == 1 else 'ies'} of "
+                "equilibria (not isolated)" if sub.family is not None and sub.family.members else ""))
         print(f"[{done}/{total}] taut {list(sub.taut)}: {what}, {sub.seconds:.2f} s", file=sys.stderr, flush=True)
 
     options = None

@@ -14,14 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cdpr_algebra.model.pose import rotation_taking, skew
+from cdpr_algebra.model.pose import rotation_about, rotation_taking
 
 TWO_PI = 2 * np.pi
-
-
-def _about(d, theta) -> np.ndarray:
-    K = skew(d)
-    return np.eye(3) + np.sin(theta) * K + (1 - np.cos(theta)) * K @ K
 
 
 def _intersect(arcs_a, arcs_b):
@@ -34,6 +29,53 @@ def _intersect(arcs_a, arcs_b):
                 if lo <= hi:
                     out.append((lo % TWO_PI, lo % TWO_PI + (hi - lo)))
     return out
+
+
+def _merged(arcs):
+    """The union of arcs [lo, hi] (lo in [0, 2pi)) as disjoint arcs: touching ones joined, across 2pi too (the
+    intersection above cuts an arc that crosses 2pi in two)."""
+    arcs = sorted(arcs)
+    out = []
+    for lo, hi in arcs:
+        if out and lo <= out[-1][1] + 1e-12:
+            out[-1] = (out[-1][0], max(out[-1][1], hi))
+        else:
+            out.append((lo, hi))
+    if len(out) > 1 and out[-1][1] >= out[0][0] + TWO_PI - 1e-12:
+        out = [(out[-1][0], out[0][1] + TWO_PI)] + out[1:-1]
+    if out and out[0][1] - out[0][0] >= TWO_PI - 1e-12:
+        return [(0.0, TWO_PI)]
+    return out
+
+
+def slack_arcs(robot, rho, slack, i, Bi, R0, axis, slack_tol: float = 1e-9) -> list:
+    """The arcs of angle theta (radians, [lo, hi]) over which the cables ``slack`` stay slack while the platform
+    turns by theta about the unit ``axis`` through its anchor point B_i (world position ``Bi``), starting from the
+    rotation ``R0``: cable j is slack where |B_j(theta) - A_j| <= rho_j, i.e. alpha_j cos(theta) + beta_j
+    sin(theta) <= h_j; [] when no angle keeps them all slack."""
+    A, bl = robot.base, robot.platform
+    arcs = [(0.0, TWO_PI)]
+    for j in slack:
+        c = R0 @ (bl[j] - bl[i])
+        c_par = float(c @ axis)
+        c_perp = c - c_par * axis
+        e = Bi - A[j] + c_par * axis
+        alpha = float(e @ c_perp)
+        beta = float(e @ np.cross(axis, c_perp))
+        K = float(e @ e + c_perp @ c_perp)
+        h = (rho[j] ** 2 * (1 + slack_tol) - K) / 2
+        amp = np.hypot(alpha, beta)
+        if h >= amp:
+            continue
+        if h < -amp:
+            return []
+        phi = np.arctan2(beta, alpha)
+        half = np.arccos(h / amp)
+        lo = (phi + half) % TWO_PI
+        arcs = _intersect(arcs, [(lo, lo + TWO_PI - 2 * half)])
+        if not arcs:
+            return []
+    return _merged(arcs)
 
 
 @dataclass(frozen=True)
@@ -60,35 +102,12 @@ def one_cable_equilibria(robot, cable: int, lengths=None, slack_tol: float = 1e-
         Bi = A[i] + s1 * rho[i] * d
         for s2 in ((+1, -1) if dist > 1e-12 * robot.size else (+1,)):
             R0 = rotation_taking(gb / dist, s2 * d) if dist > 1e-12 * robot.size else np.eye(3)
-            arcs = [(0.0, TWO_PI)]
-            for j in range(robot.n):
-                if j == i:
-                    continue
-                c = R0 @ (bl[j] - bl[i])
-                c_par = float(c @ d)
-                c_perp = c - c_par * d
-                e = Bi - A[j] + c_par * d
-                alpha = float(e @ c_perp)
-                beta = float(e @ np.cross(d, c_perp))
-                K = float(e @ e + c_perp @ c_perp)
-                h = (rho[j] ** 2 * (1 + slack_tol) - K) / 2
-                amp = np.hypot(alpha, beta)
-                if h >= amp:
-                    continue
-                if h < -amp:
-                    arcs = []
-                    break
-                phi = np.arctan2(beta, alpha)
-                half = np.arccos(h / amp)
-                lo = (phi + half) % TWO_PI
-                arcs = _intersect(arcs, [(lo, lo + TWO_PI - 2 * half)])
-                if not arcs:
-                    break
+            arcs = slack_arcs(robot, rho, [j for j in range(robot.n) if j != i], i, Bi, R0, d, slack_tol)
             if not arcs:
                 continue
             lo, hi = max(arcs, key=lambda a: a[1] - a[0])
             theta = 0.5 * (lo + hi)
-            R = _about(d, theta) @ R0
+            R = rotation_about(d, theta) @ R0
             position = Bi - R @ bl[i]
             out.append(OneCableEquilibrium(i, position, R, s1 * robot.load, s1 > 0 and s2 > 0,
                                            tuple((a - theta, b - theta) for a, b in arcs)))

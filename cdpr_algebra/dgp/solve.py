@@ -122,6 +122,7 @@ from cdpr_algebra.model.taut_equations import decode
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .normalization import normalized_problem, world_coordinates
 from .one_cable import one_cable_equilibria
+from .positive_dimensional import families_of_endpoints
 from .other_start import other_generic_instance
 from .tension_infinity import tension_infinity_undecided
 from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, study_roots, track_study_first
@@ -231,6 +232,7 @@ class DGPSubproblem:
     settled: str | None = None  # how the admissible set was proven complete although the homotopy's account is not
     excluded: int | None = None  # boxes of the interval proof that the set holds no admissible equilibrium (not tracked)
     retried: dict = field(default_factory=dict)  # paths whose outcome came from a retry, per kind (taut, detour, ..)
+    family: object = None  # positive_dimensional.Family: uncertified endpoints on positive-dimensional sets
 
     @property
     def admissible_complete(self) -> bool:
@@ -264,7 +266,8 @@ class DGPSubproblem:
                 "finite": self.finite, "real": self.real, "admissible": self.admissible,
                 "failed_paths": self.failed_paths, "seconds": self.seconds, "skipped": self.skipped,
                 "settled": self.settled, "admissible_complete": self.admissible_complete, "excluded": self.excluded,
-                "retried": dict(self.retried)}
+                "retried": dict(self.retried),
+                "positive_dimensional": None if self.family is None else self.family.to_dict()}
 
 
 @dataclass(frozen=True)
@@ -671,8 +674,9 @@ def _with_endpoint_certificates(robot, rho, items) -> list:
                     why[r] = why.get(r, 0) + 1
             certified = int(ok.sum())
             complete = sub.accounted and certified == len(ok) == sub.outcomes["regular"]
+            family = families_of_endpoints(robot, rho, items[k][0], items[k][2][~ok]) if not ok.all() else None
             out[k] = replace(sub, certified=certified, certified_real=int(np.sum(ok & boxes.real)), uncertified=why,
-                             complete=complete)
+                             complete=complete, family=family)
     return out
 
 
@@ -793,6 +797,9 @@ def dgp_table(result: DGPResult, n: int) -> str:
                      f"equilibrium (every box of the domain excluded; their inadmissible solutions not counted): "
                      + ", ".join(str(list(s.taut)) for s in excluded))
     for s in result.subproblems:
+        for f in s.family.members if s.family is not None else ():
+            lines.append("  " + f.describe(s.family.fixed))
+    for s in result.subproblems:
         if s.excluded is not None:
             continue
         if s.skipped:
@@ -817,10 +824,13 @@ def summary_line(result: DGPResult) -> str:
     cert = sum(s.certified or 0 for s in subs)
     cert_real = sum(s.certified_real or 0 for s in subs)
     excluded = sum(1 for s in subs if s.excluded is not None)
+    families = sum(len(s.family.members) for s in subs if s.family is not None)
     return (f"paths {paths}: {o['regular']} regular, {o['singular']} singular, {o['at_infinity']} at infinity, "
             f"{o['failed']} failed; {sum(s.finite for s in subs)} finite ({cert} certified distinct roots, "
             f"{cert_real} of them proven real), {sum(s.real for s in subs)} real, "
             f"{sum(s.admissible for s in subs)} admissible"
+            + (f" and {families} admissible famil{'y' if families == 1 else 'ies'} of equilibria (not isolated, "
+               "not certified)" if families else "")
             + (f" ({excluded} taut set(s) not tracked: no admissible equilibrium, interval proof)" if excluded else "")
             + f"; {verdict}")
 
@@ -836,6 +846,8 @@ def incompleteness(sub: DGPSubproblem) -> str:
     if sub.uncertified:
         why = "; ".join(f"{v}: {k}" for k, v in sorted(sub.uncertified.items()))
         parts.append(f"{sum(sub.uncertified.values())} regular endpoint(s) not certified ({why})")
+    if sub.family is not None:
+        parts.append(sub.family.describe())
     if sub.certified is None and sub.paths:
         parts.append("endpoints not certified")
     if sub.generic_count is not None and sum(sub.outcomes.values()) != sub.generic_count:

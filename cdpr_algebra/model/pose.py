@@ -22,6 +22,12 @@ def skew(v) -> np.ndarray:
     return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
 
 
+def rotation_about(axis, theta) -> np.ndarray:
+    """The rotation by ``theta`` (radians) about the unit ``axis`` (Rodrigues' formula)."""
+    K = skew(axis)
+    return np.eye(3) + np.sin(theta) * K + (1 - np.cos(theta)) * K @ K
+
+
 def rotation_taking(a, b) -> np.ndarray:
     """A rotation R with R a = b (unit vectors): the smallest one, or a half-turn when b = -a."""
     a = np.asarray(a, dtype=float)

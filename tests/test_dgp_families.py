@@ -1,0 +1,119 @@
+"""Issue 15: taut sets whose equilibria form continuous families are named and their real families listed, not left
+as unexplained uncertified endpoints.  Robot: ``examples/symmetric_4cables.toml`` with its centre of mass moved into the platform's plane, at
+the platform's centre (a flat plate with its attachment points at the corners): with the cables on a diagonal
+taut, B1, B3 and G are collinear and the platform turns freely about that line.
+
+Independent check of the verdict: the endpoints, turned about the line through B1 and B3 by any (complex) angle,
+still solve the taut equations, tensions unchanged (the family the test reports is there), and the same taut set
+of the shipped robot (G 0.2 m below the plate) is complete with no family.  Of the listed families: the taut
+equations at poses turned across each feasible arc, the slack cables' lengths (a cable exactly at its length at an
+end of an arc, shorter inside), and the stability classes against the potential energy (the height of G): of the
+two real families of {1, 3} with positive tensions, the lower hangs neutrally stable ('>=', the turn a null
+direction of H_r), the higher is a saddle.
+"""
+
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from cdpr_algebra.dgp.solve import (DGPResult, _solve_taut_set, _with_endpoint_certificates, dgp_table, incompleteness,
+                                     summary_line)
+from cdpr_algebra.generated.taut_equations import taut_residual
+from cdpr_algebra.model.robot import load_robot
+from cdpr_algebra.model.taut_equations import decode, encode
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _turned(p, R, axis_point, axis, theta):
+    """The pose turned by the complex angle theta about the world line through axis_point along the unit axis."""
+    K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+    Q = np.eye(3) + np.sin(theta) * K + (1 - np.cos(theta)) * K @ K  # Rodrigues, valid for complex theta
+    return axis_point + Q @ (p - axis_point), Q @ R
+
+
+def _residual(robot, cables, x):
+    idx = list(cables)
+    params = np.concatenate([robot.base[idx].ravel(), np.asarray(robot.lengths)[idx] ** 2,
+                             robot.platform[idx].ravel(), robot.com, robot.load * robot.load_direction])
+    F = np.zeros(12 + len(idx), dtype=complex)
+    taut_residual(list(x), list(params), F)
+    return np.max(np.abs(F))
+
+
+def test_a_taut_set_with_a_family_of_equilibria_is_named():
+    shipped = load_robot(ROOT / "examples" / "symmetric_4cables.toml")
+    flat = replace(shipped, com=np.zeros(3))
+    cables = (0, 2)
+    sub, _, Z = _solve_taut_set(flat, flat.lengths, cables)
+    (sub,) = _with_endpoint_certificates(flat, flat.lengths, [(cables, sub, Z)])
+    assert not sub.complete and sub.certified == 0
+    fam = sub.family
+    assert fam is not None and fam.endpoints == sub.outcomes["regular"] == len(Z) > 0
+    assert fam.dimensions == (1,) and fam.undecided == 0
+    assert fam.fixed == ("B1", "B3", "G") and fam.turns and not fam.tensions_change
+    assert "positive-dimensional" in incompleteness(sub) and "B1, B3, G" in incompleteness(sub)
+    assert sub.to_dict()["positive_dimensional"]["fixed_points"] == ["B1", "B3", "G"]
+    # the family is there: every endpoint turned about B1 B3 still solves the equations
+    for x in Z[:6]:
+        p, R, lam = (a[0] for a in decode(x[None], 2))
+        B1, B3 = p + R @ flat.platform[0], p + R @ flat.platform[2]
+        axis = (B3 - B1) / np.sqrt((B3 - B1) @ (B3 - B1))
+        scale = 1 + np.max(np.abs(x))
+        assert _residual(flat, cables, x) <= 1e-9 * scale ** 2
+        for theta in (0.3, -1.1 + 0.4j):
+            p2, R2 = _turned(p, R, B1, axis, theta)
+            x2 = encode(p2, R2, lam)
+            assert np.max(np.abs(x2 - x)) > 1e-3  # a different point of the set ...
+            assert _residual(flat, cables, x2) <= 1e-9 * scale ** 2  # ... on it
+
+
+def test_the_same_taut_set_of_a_generic_platform_has_no_family():
+    shipped = load_robot(ROOT / "examples" / "symmetric_4cables.toml")
+    cables = (0, 2)
+    sub, _, Z = _solve_taut_set(shipped, shipped.lengths, cables)
+    (sub,) = _with_endpoint_certificates(shipped, shipped.lengths, [(cables, sub, Z)])
+    assert sub.complete and sub.family is None and sub.to_dict()["positive_dimensional"] is None
+
+
+def test_the_real_families_are_listed_with_their_feasible_arcs():
+    flat = replace(load_robot(ROOT / "examples" / "symmetric_4cables.toml"), com=np.zeros(3))
+    rho = np.asarray(flat.lengths)
+    for cables, slack in (((0, 2), (1, 3)), ((1, 3), (0, 2))):
+        sub, _, Z = _solve_taut_set(flat, rho, cables)
+        (sub,) = _with_endpoint_certificates(flat, rho, [(cables, sub, Z)])
+        fam = sub.family
+        # 12 families, each holding two endpoints (module doc of dgp.positive_dimensional)
+        assert len(fam.groups) == 12 and set(fam.groups) == {2} and fam.real == 2
+        assert 1 <= len(fam.members) <= fam.real
+        for f in fam.members:
+            assert f.taut == tuple(c + 1 for c in cables) and np.all(f.tensions[list(cables)] > 0)
+            assert np.all(f.tensions[list(slack)] == 0)
+            lam = f.tensions[list(cables)] / rho[list(cables)]
+            for lo, hi in f.arcs:
+                for theta in np.linspace(lo, hi, 5):
+                    B1 = f.position + f.rotation @ flat.platform[cables[0]]
+                    p, R = _turned(f.position, f.rotation, B1, f.axis, theta)
+                    x = encode(p, R, lam)
+                    assert _residual(flat, cables, x) <= 1e-10
+                    d = np.linalg.norm(p + flat.platform[list(slack)] @ R.T - flat.base[list(slack)], axis=1)
+                    assert np.all(d <= rho[list(slack)] * (1 + 1e-8))
+                    if lo < theta < hi:
+                        continue
+                    if hi - lo < 2 * np.pi - 1e-9:  # an end of an arc: some slack cable exactly at its length
+                        assert np.min(np.abs(d - rho[list(slack)])) <= 1e-8
+        assert "family of equilibria" in fam.members[0].describe(fam.fixed)
+    # the stable one hangs: of the two real families of {1, 3} with positive tensions, the lower one
+    sub, _, Z = _solve_taut_set(flat, rho, (0, 2))
+    (sub,) = _with_endpoint_certificates(flat, rho, [((0, 2), sub, Z)])
+    low, high = sorted(sub.family.members, key=lambda f: f.position[2])
+    assert low.hessian == ">=" and high.hessian == "<>"
+    # the table lists them under the (empty) table of isolated equilibria, and the summary counts them
+    result = DGPResult((), (sub,), 0.0, 0, None)
+    text = dgp_table(result, flat.n)
+    assert text.count("a family of equilibria turning about the line through B1, B3, G") == 2
+    assert "2 admissible families of equilibria (not isolated, not certified)" in summary_line(result)
+    assert not result.complete
+    members = result.to_dict()["subproblems"][0]["positive_dimensional"]["members"]
+    assert [m["certified"] for m in members] == [False, False]
