@@ -113,7 +113,36 @@ def test_the_real_families_are_listed_with_their_feasible_arcs():
     result = DGPResult((), (sub,), 0.0, 0, None)
     text = dgp_table(result, flat.n)
     assert text.count("a family of equilibria turning about the line through B1, B3, G") == 2
-    assert "2 admissible families of equilibria (not isolated, not certified)" in summary_line(result)
+    assert "2 admissible families of equilibria (not isolated; 2 of their listed poses certified)" in summary_line(result)
     assert not result.complete
     members = result.to_dict()["subproblems"][0]["positive_dimensional"]["members"]
-    assert [m["certified"] for m in members] == [False, False]
+    assert [m["certified"] for m in members] == [True, True]  # the certificates: the next test
+
+
+def test_the_pose_of_a_turning_family_is_certified_only_for_exactly_collinear_data():
+    from cdpr_algebra.certificates.families import certify_turning_equilibrium, collinear_exactly
+
+    flat = replace(load_robot(ROOT / "examples" / "symmetric_4cables.toml"), com=np.zeros(3))
+    rho = np.asarray(flat.lengths)
+    sub, _, Z = _solve_taut_set(flat, rho, (0, 2))
+    (sub,) = _with_endpoint_certificates(flat, rho, [((0, 2), sub, Z)])
+    for f in sub.family.members:
+        cert = f.certificate
+        assert f.certified and cert.exists_unique and cert.hessian == "undecided"
+        assert cert.tension_signs == ("positive", "slack", "positive", "slack") and cert.slack_proven
+        # the proven root is the listed pose to the rounding of its rebuilding (residual ~1e-13)
+        assert np.all(cert.position_lower - 1e-9 <= f.position) and np.all(f.position <= cert.position_upper + 1e-9)
+        assert np.all(cert.tension_lower[[0, 2]] - 1e-9 <= f.tensions[[0, 2]])
+        assert np.all(f.tensions[[0, 2]] <= cert.tension_upper[[0, 2]] + 1e-9)
+        assert "certified" in f.describe(sub.family.fixed) and f.to_dict()["certificate"]["certified"]
+        # a pose off the family by 1e-4 m is no root: no certificate
+        wrong = certify_turning_equilibrium(flat, rho, (0, 2), f.position + 1e-4, f.rotation, f.tensions[[0, 2]])
+        assert not wrong.certified and not wrong.exists_unique
+    # a centre of mass at 0.4 of the diagonal is collinear on paper, not once 0.1 and 0.06 are rounded to doubles
+    b1, b3 = flat.platform[0], flat.platform[2]
+    assert collinear_exactly([b1, b3, np.zeros(3)])
+    assert not collinear_exactly([b1, b3, np.array([0.1, 0.06, 0.0])])
+    off = replace(flat, com=np.array([0.1, 0.06, 0.0]))
+    f = sub.family.members[0]
+    cert = certify_turning_equilibrium(off, rho, (0, 2), f.position, f.rotation, f.tensions[[0, 2]])
+    assert not cert.certified and "not exactly collinear" in cert.reason

@@ -448,7 +448,7 @@ def _taut_problem(robot, lengths, cables, position, rotation, tensions):
 
         def make_system(num):
             A, b, g, f = _robot_data(robot, taut, num, frame=frame)
-            return _one_cable_system(A, b, g, f, [num(float(rho[taut[0]])) ** 2], *gauge)
+            return _gauged_system(A, b, g, f, [num(float(rho[taut[0]])) ** 2], *gauge)
     return x0, make_system, _scales(robot, m, range(12 + m), robot.cable_scale, x0), frame, rho, taut
 
 
@@ -482,19 +482,20 @@ def _one_cable_gauge(robot, i, R0):
     return tuple(v.tolist() for v in (e1, e2, c, t))
 
 
-def _one_cable_system(A, b, g, f, rho2, e1, e2, c, t):
-    """Square system for m = 1: rotation (6), length, force (3), moments along e1 and e2, gauge t . (R c) = 0."""
+def _gauged_system(A, b, g, f, rho2, e1, e2, c, t):
+    """Square system of a taut set whose equilibria turn about an axis (m = 1: the cable; m >= 2: the line of the
+    taut anchors and G, :mod:`.families`): rotation (6), lengths (m), force (3), moments along e1, e2, t . (R c) = 0."""
+    k0, n = 9 + len(A), 12 + len(A)  # rows of taut_system: rotation 0-5, lengths, force, then the moment at k0
 
     def system(x, jac=True):
         F, J = taut_system(x, A, b, g, f, rho2, jac)
-        # rows of taut_system: rotation 0-5, length 6, force 7-9, moment 10-12
-        Fs = F[:10] + [sum(e_[k] * F[10 + k] for k in range(3)) for e_ in (e1, e2)]
+        Fs = F[:k0] + [sum(e_[k] * F[k0 + k] for k in range(3)) for e_ in (e1, e2)]
         Rc = [c[0] * x[_U + k] + c[1] * x[_V + k] + c[2] * x[_W + k] for k in range(3)]
         Fs.append(sum(t[k] * Rc[k] for k in range(3)))
         if not jac:
             return Fs, None
-        Js = J[:10] + [[sum(e_[k] * J[10 + k][j] for k in range(3)) for j in range(13)] for e_ in (e1, e2)]
-        r = [0] * 13
+        Js = J[:k0] + [[sum(e_[k] * J[k0 + k][j] for k in range(3)) for j in range(n)] for e_ in (e1, e2)]
+        r = [0] * n
         for k in range(3):
             r[_U + k], r[_V + k], r[_W + k] = c[0] * t[k], c[1] * t[k], c[2] * t[k]
         Js.append(r)

@@ -20,9 +20,10 @@ group with real invariants and positive tensions is a real family of equilibria:
 invariants (R0 takes the platform's anchor line to the world's, then any turn about it), and the turning angles at
 which the other cables stay slack are intersected as for one taut cable (:func:`.one_cable.slack_arcs`).  Each
 family with a feasible arc is listed with the pose in the middle of its largest arc, the arcs, and the residual of
-the taut equations there (its equations, not the test, make it an equilibrium; it is not certified: the interval
-certificates prove isolated roots).  The subproblem stays incomplete: the families rest on the numerical test, and
-on every family having drawn a path.
+the taut equations there (its equations, not the test, make it an equilibrium), and that pose's interval
+certificate under a gauge that fixes the turning angle (:func:`cdpr_algebra.certificates.families.
+certify_turning_equilibrium`: the point, not the arc).  The subproblem stays incomplete: the list of families rests
+on the numerical test, and on every family having drawn a path.
 """
 
 from __future__ import annotations
@@ -64,12 +65,18 @@ class FamilyMember:
     arcs: tuple
     residual: float
     hessian: str  # class of H_r at the pose (floating point; the turn about the axis is a null direction)
+    certificate: object = None  # certificates.families.certify_turning_equilibrium of the pose, or None
+
+    @property
+    def certified(self) -> bool:
+        return bool(self.certificate is not None and self.certificate.certified)
 
     def to_dict(self) -> dict:
         return {"taut": list(self.taut), "position": jsonable(self.position), "rotation": jsonable(self.rotation),
                 "tensions": jsonable(self.tensions), "axis": jsonable(self.axis), "hessian": self.hessian,
                 "arcs_degrees": [[float(np.degrees(a)), float(np.degrees(b))] for a, b in self.arcs],
-                "residual": self.residual, "certified": False}
+                "residual": self.residual, "certified": self.certified,
+                "certificate": None if self.certificate is None else self.certificate.to_dict()}
 
     def describe(self, fixed=()) -> str:
         """One line for the DGP's table: the family, its arcs, and the pose in the middle of the largest."""
@@ -78,9 +85,11 @@ class FamilyMember:
         pose = " ".join(f"{v:.3f}" for v in self.position) + ", angles " + " ".join(
             f"{v:.3f}" for v in angles_from_matrix(self.rotation))
         tau = " ".join(f"{v:.3f}" for v in self.tensions)
+        proof = ("that pose certified (interval proof of a gauge-fixed point; the arc is not)" if self.certified
+                 else "not certified" + (f": {self.certificate.reason}" if self.certificate is not None else ""))
         return (f"taut {list(self.taut)}: a family of equilibria turning about {through}, the other cables slack "
-                f"over turning angles {arcs} deg (numerical local dimension test; not certified); in the middle: "
-                f"position {pose}, tensions {tau}, H_r {self.hessian} (residual {self.residual:.1e})")
+                f"over turning angles {arcs} deg (numerical local dimension test); in the middle: position {pose}, "
+                f"tensions {tau}, H_r {self.hessian} (residual {self.residual:.1e}); {proof}")
 
 
 @dataclass(frozen=True)
@@ -110,7 +119,7 @@ class Family:
         sizes = ", ".join(f"{k} x {v}" for v, k in sorted(Counter(self.groups).items()))
         return (text + f"; {len(self.groups)} families among the endpoints (endpoints per family: {sizes}), "
                 f"{self.real} real with positive tensions, {len(self.members)} of them with turning angles at which "
-                "the other cables are slack (listed as families, not certified)")
+                "the other cables are slack (listed as families)")
 
     def to_dict(self) -> dict:
         return {"endpoints": self.endpoints, "dimensions": list(self.dimensions), "undecided": self.undecided,
@@ -193,10 +202,12 @@ def families_of_endpoints(robot, rho, cables, Z, tension_tol: float = 0.0) -> Fa
     return _turning_members(robot, rho, cables, W, family, tension_tol, residual)
 
 
-def _turning_members(robot, rho, cables, W, family, tension_tol, residual) -> Family:
+def _turning_members(robot, rho, cables, W, family, tension_tol, residual, certify=True) -> Family:
     """``family`` with its endpoints W (world coordinates, on the set) grouped into families of turning equilibria
     and the real ones with positive tensions rebuilt (module doc); ``residual(x)``: relative residual of a world
-    root."""
+    root; ``certify``: each rebuilt pose's interval certificate (:mod:`cdpr_algebra.certificates.families`)."""
+    from cdpr_algebra.certificates.families import certify_turning_equilibrium
+
     m = len(cables)
     idx = list(cables)
     L, Q = robot.cable_scale, robot.load
@@ -235,7 +246,8 @@ def _turning_members(robot, rho, cables, W, family, tension_tol, residual) -> Fa
         tensions[idx] = tau.real
         cls = stability_classes(robot.base[idx], pt + robot.platform[idx] @ Rt.T, pt + Rt @ robot.com, tau.real,
                                 rho[idx], robot.load, robot.size)
+        cert = certify_turning_equilibrium(robot, rho, idx, pt, Rt, tau.real) if certify else None
         members.append(FamilyMember(tuple(i + 1 for i in idx), pt, Rt, tensions, axis,
                                     tuple((a - theta, b - theta) for a, b in arcs),
-                                    residual(encode(pt, Rt, tau.real / rho[idx])), cls))
+                                    residual(encode(pt, Rt, tau.real / rho[idx])), cls, cert))
     return replace(family, groups=tuple(len(g) for g in groups), real=real, members=tuple(members))

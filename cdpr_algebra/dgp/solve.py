@@ -824,13 +824,13 @@ def summary_line(result: DGPResult) -> str:
     cert = sum(s.certified or 0 for s in subs)
     cert_real = sum(s.certified_real or 0 for s in subs)
     excluded = sum(1 for s in subs if s.excluded is not None)
-    families = sum(len(s.family.members) for s in subs if s.family is not None)
+    families = [f for s in subs if s.family is not None for f in s.family.members]
     return (f"paths {paths}: {o['regular']} regular, {o['singular']} singular, {o['at_infinity']} at infinity, "
             f"{o['failed']} failed; {sum(s.finite for s in subs)} finite ({cert} certified distinct roots, "
             f"{cert_real} of them proven real), {sum(s.real for s in subs)} real, "
             f"{sum(s.admissible for s in subs)} admissible"
-            + (f" and {families} admissible famil{'y' if families == 1 else 'ies'} of equilibria (not isolated, "
-               "not certified)" if families else "")
+            + (f" and {len(families)} admissible famil{'y' if len(families) == 1 else 'ies'} of equilibria (not "
+               f"isolated; {sum(f.certified for f in families)} of their listed poses certified)" if families else "")
             + (f" ({excluded} taut set(s) not tracked: no admissible equilibrium, interval proof)" if excluded else "")
             + f"; {verdict}")
 
