@@ -19,7 +19,6 @@ import numpy as np
 
 from cdpr_algebra.dgp.solve import (DGPResult, _solve_taut_set, _with_endpoint_certificates, dgp_table, incompleteness,
                                      summary_line)
-from cdpr_algebra.generated.taut_equations import taut_residual
 from cdpr_algebra.model.robot import load_robot
 from cdpr_algebra.model.taut_equations import decode, encode
 
@@ -34,12 +33,19 @@ def _turned(p, R, axis_point, axis, theta):
 
 
 def _residual(robot, cables, x):
+    """max |equation| of the taut set's statics at x = (p, u, v, w, lam) (complex allowed), in plain numpy: lengths
+    |B_i - A_i|^2 = rho_i^2, force sum lam_i (A_i - B_i) + Q d = 0, moment about G sum (B_i - G) x lam_i (A_i - B_i),
+    rotation R^T R = I."""
     idx = list(cables)
-    params = np.concatenate([robot.base[idx].ravel(), np.asarray(robot.lengths)[idx] ** 2,
-                             robot.platform[idx].ravel(), robot.com, robot.load * robot.load_direction])
-    F = np.zeros(12 + len(idx), dtype=complex)
-    taut_residual(list(x), list(params), F)
-    return np.max(np.abs(F))
+    p, R, lam = x[:3], np.column_stack([x[3:6], x[6:9], x[9:12]]), x[12:]
+    B = p + robot.platform[idx] @ R.T
+    G = p + R @ robot.com
+    A = robot.base[idx]
+    forces = lam[:, None] * (A - B)
+    rho = np.asarray(robot.lengths)[idx]
+    eqs = [np.sum((B - A) ** 2, axis=1) - rho ** 2, forces.sum(axis=0) + robot.load * robot.load_direction,
+           np.cross(B - G, forces).sum(axis=0), (R.T @ R - np.eye(3)).ravel()]
+    return max(np.max(np.abs(e)) for e in eqs)
 
 
 def test_a_taut_set_with_a_family_of_equilibria_is_named():
@@ -146,3 +152,29 @@ def test_the_pose_of_a_turning_family_is_certified_only_for_exactly_collinear_da
     f = sub.family.members[0]
     cert = certify_turning_equilibrium(off, rho, (0, 2), f.position, f.rotation, f.tensions[[0, 2]])
     assert not cert.certified and "not exactly collinear" in cert.reason
+
+
+def test_a_beam_hung_from_four_cables_has_turning_families():
+    """``examples/beam_4cables.toml``: every anchor on one line with G; the four-cable set's real families."""
+    from cdpr_algebra.comparison.settle import FAMILY_NOT_SEARCHED, settle_incomplete
+
+    beam = load_robot(ROOT / "examples" / "beam_4cables.toml")
+    cables = (0, 1, 2, 3)
+    sub, _, Z = _solve_taut_set(beam, beam.lengths, cables)
+    (sub,) = _with_endpoint_certificates(beam, beam.lengths, [(cables, sub, Z)])
+    fam = sub.family
+    assert fam is not None and fam.endpoints == sub.outcomes["regular"] and fam.undecided == 0
+    assert fam.fixed == ("B1", "B2", "B3", "B4", "G") and set(fam.groups) == {2}
+    assert "not certified (" not in incompleteness(sub)  # the family accounts for every refused endpoint
+    assert len(fam.members) == 2 and all(f.certified for f in fam.members)
+    for f in fam.members:
+        lam = f.tensions / np.asarray(beam.lengths)
+        for theta in (0.0, 1.0, 2.5):  # all around the beam (full arcs: four taut cables, none slack)
+            B1 = f.position + f.rotation @ beam.platform[0]
+            p, R = _turned(f.position, f.rotation, B1, f.axis, theta)
+            assert _residual(beam, cables, encode(p, R, lam)) <= 1e-10
+    low = min(fam.members, key=lambda f: (f.position + f.rotation @ beam.com)[2])
+    assert low.hessian == ">="  # the lower centre of mass hangs (neutral along the turn)
+    # --settle does not search it: a continuum of solutions leaves every box around it undecided
+    settled, records = settle_incomplete(beam, DGPResult((), (sub,), 0.0, 0, None))
+    assert [r.outcome for r in records] == ["undecided"] and records[0].detail == FAMILY_NOT_SEARCHED

@@ -102,7 +102,8 @@ def run(args) -> int:
         if any(s.failed_paths > AUTO_RESCUE_MAX_FAILED for s in result.incomplete) and not args.mpmath_retry:
             print("  (--mpmath-retry tracks up to 4 failed paths per subproblem again, in double-double where double "
                   "precision fails: up to ~10 s a path)", file=sys.stderr)
-        if not args.settle:
+        # a set whose solutions come in families has a continuum of them: no branch and prune ends there
+        if not args.settle and any(s.family is None for s in result.incomplete):
             print("  (--settle proves their admissible equilibria by interval branch and prune)", file=sys.stderr)
         return INCOMPLETE
     return 0

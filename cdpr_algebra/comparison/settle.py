@@ -14,7 +14,9 @@ every admissible equilibrium of the taut set.  :func:`settle_incomplete` runs it
   incomplete (``complete`` False): only the admissible set is proven.
 * ``disagree``: a homotopy solution that the complete interval search does not have -- one of the two is wrong;
   nothing is settled, the record says which solution.
-* ``undecided``: the interval search skipped the set or left undecided boxes; nothing is settled.
+* ``undecided``: the interval search skipped the set or left undecided boxes; nothing is settled.  A subproblem
+  whose endpoints lie on continuous families of solutions (its ``family``) is not searched (every box around a
+  family stays undecided): ``undecided`` at once.
 """
 
 from __future__ import annotations
@@ -33,7 +35,10 @@ from cdpr_algebra.report.jsonable import jsonable
 
 from .compare import _match
 
-__all__ = ["SettleRecord", "settle_incomplete"]
+__all__ = ["FAMILY_NOT_SEARCHED", "SettleRecord", "settle_incomplete"]
+
+FAMILY_NOT_SEARCHED = ("not searched: its solutions come in continuous families (dgp.positive_dimensional), which "
+                       "no branch and prune reduces to proven isolated boxes")
 
 
 @dataclass(frozen=True)
@@ -70,8 +75,15 @@ def settle_incomplete(robot, result: DGPResult, lengths=None, options: BPOptions
         return solve_taut_set_interval(robot, rho, [c - 1 for c in sub.taut], options), time.perf_counter() - t0
 
     with ThreadPoolExecutor(max_workers=jobs) as ex:
-        futures = [ex.submit(search, s) for s in todo]
+        # a set whose solutions come in families holds a continuum of them: the search would only split boxes
+        futures = [None if s.family is not None else ex.submit(search, s) for s in todo]
         for k, (sub, fut) in enumerate(zip(todo, futures)):
+            if fut is None:
+                rec, added = SettleRecord(tuple(sub.taut), "undecided", FAMILY_NOT_SEARCHED, None, 0, 0.0), []
+                records.append(rec)
+                if progress:
+                    progress(rec, k + 1, len(todo))
+                continue
             isub, seconds = fut.result()
             rec, added = _settle_one(robot, rho, result, sub, isub, seconds)
             if rec.outcome == "settled":

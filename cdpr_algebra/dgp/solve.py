@@ -674,7 +674,8 @@ def _with_endpoint_certificates(robot, rho, items) -> list:
                     why[r] = why.get(r, 0) + 1
             certified = int(ok.sum())
             complete = sub.accounted and certified == len(ok) == sub.outcomes["regular"]
-            family = families_of_endpoints(robot, rho, items[k][0], items[k][2][~ok]) if not ok.all() else None
+            family = families_of_endpoints(robot, rho, items[k][0], items[k][2][~ok], TENSION_RTOL * robot.load) \
+                if not ok.all() else None
             out[k] = replace(sub, certified=certified, certified_real=int(np.sum(ok & boxes.real)), uncertified=why,
                              complete=complete, family=family)
     return out
@@ -843,10 +844,10 @@ def incompleteness(sub: DGPSubproblem) -> str:
     if sub.failed_paths:
         why = ", ".join(f"{v} {k.replace('_', ' ')}" for k, v in sorted(sub.failures.items()))
         parts.append(f"{sub.failed_paths} of {sub.paths} paths failed ({why})")
-    if sub.uncertified:
+    if sub.uncertified and (sub.family is None or sub.family.endpoints < sum(sub.uncertified.values())):
         why = "; ".join(f"{v}: {k}" for k, v in sorted(sub.uncertified.items()))
         parts.append(f"{sum(sub.uncertified.values())} regular endpoint(s) not certified ({why})")
-    if sub.family is not None:
+    if sub.family is not None:  # the certificates refuse points of a positive-dimensional set: its account says why
         parts.append(sub.family.describe())
     if sub.certified is None and sub.paths:
         parts.append("endpoints not certified")
