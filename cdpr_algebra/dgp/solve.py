@@ -213,7 +213,9 @@ class DGPSubproblem:
     None where no path was tracked), ``uncertified``: the others per reason; ``complete``: no path failed, the
     outcomes account for the generic count, and every regular endpoint is certified (or the set is proven empty by
     pruning, or proven to hold no admissible equilibrium by the interval filter -- ``excluded``, not tracked, its
-    inadmissible solutions not counted -- or solved analytically)."""
+    inadmissible solutions not counted -- or solved analytically); ``family``: when regular endpoints that the
+    certificates refuse lie on a positive-dimensional solution set, what :mod:`.positive_dimensional` saw there
+    (the real families of turning equilibria listed; the subproblem stays incomplete)."""
 
     taut: tuple  # 1-based
     paths: int
