@@ -62,3 +62,11 @@ def test_regular_roots_are_regular_and_singular_ones_undecided():
     a = 0.3 + 0.7j
     u = local_dimension(non_reduced, np.array([a, np.sqrt(1 - a * a), 1.0]))
     assert u.verdict == "undecided"  # never "regular", never a dimension it has not shown
+
+
+def test_a_point_that_is_no_root_is_undecided():
+    def no_root_near(x):  # x^2 + 1 = 0, y = 0 from a real start: Gauss-Newton in complex arithmetic stays real
+        return np.array([x[0] ** 2 + 1, x[1]]), np.array([[2 * x[0], 0], [0, 1]])
+
+    r = local_dimension(no_root_near, np.array([0.3, 0.0]))
+    assert r.verdict == "undecided" and r.residuals[0] > 1e-3

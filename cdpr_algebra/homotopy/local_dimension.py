@@ -18,7 +18,8 @@ solution set near x* is a complex manifold of dimension d tangent to the null sp
 
 The verdict is ``positive_dimensional`` (dimension d >= 1) when every trial reaches a rounding-level residual
 (``ON_SET``) at both eps, ~eps away, at a point where J keeps rank <= r; ``regular`` (dimension 0: an isolated
-root) when J has full numerical rank; ``undecided`` otherwise.  Undecided covers isolated singular roots (the
+root) when J has full numerical rank at a refined point with a rounding-level residual; ``undecided`` otherwise
+(also when the refinement reaches no such point).  Undecided covers isolated singular roots (the
 projections stall) and non-reduced components (J has rank below n - d on them, so most null directions leave the
 set to second order and the projections stall too): the test does not tell these apart, and says so.  A
 numerical test (rounding and a finite eps), not a proof: callers label it so.
@@ -111,7 +112,7 @@ def local_dimension(evaluate, x0, scale=None, seed: int = 0) -> LocalDimension:
     _, J = G(y)
     _, s, _, _ = _svd(J)
     r = int(np.sum(s > RANK_RTOL))
-    y, _ = _project(G, y, r)
+    y, res0 = _project(G, y, r)
     _, J = G(y)
     _, s, Vh, _ = _svd(J)
     r = int(np.sum(s > RANK_RTOL))
@@ -121,6 +122,8 @@ def local_dimension(evaluate, x0, scale=None, seed: int = 0) -> LocalDimension:
     def result(verdict, dim, tangent=np.zeros((n, 0), complex), residuals=()):
         return LocalDimension(verdict, dim, x, tangent, s, tuple(residuals))
 
+    if res0 > ON_SET:  # not a point of the solution set (Newton's method did not reach one)
+        return result("undecided", None, residuals=(res0,))
     if d == 0:
         return result("regular", 0)
     null = Vh[r:].conj().T  # (n, d), in y
