@@ -59,3 +59,13 @@ def test_seed000_tests_have_no_one_cable_equilibria():
     assert all(one_cable_equilibria(robot, i) == [] for i in range(3))
     robot = load_robot("examples/seed000_test3.toml")
     assert not any(s.hanging for i in range(6) for s in one_cable_equilibria(robot, i))
+
+
+def test_feasible_arcs_are_joined_across_two_pi():
+    """The arc intersection cuts an arc crossing 2 pi in two; the reported arcs are the union, joined."""
+    from cdpr_algebra.dgp.one_cable import TWO_PI, _merged
+
+    assert _merged([(0.0, 1.0), (5.0, TWO_PI)]) == [(5.0, 1.0 + TWO_PI)]
+    assert _merged([(0.0, 1.0), (1.0, 2.0), (3.0, 4.0)]) == [(0.0, 2.0), (3.0, 4.0)]
+    assert _merged([(0.0, 0.1), (5.0, 5.0 + TWO_PI - 0.5)]) == [(5.0, 5.0 + TWO_PI - 0.5)]  # one covers the other
+    assert _merged([(0.0, 3.0), (3.0, TWO_PI)]) == [(0.0, TWO_PI)]

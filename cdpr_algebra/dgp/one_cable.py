@@ -42,7 +42,7 @@ def _merged(arcs):
         else:
             out.append((lo, hi))
     if len(out) > 1 and out[-1][1] >= out[0][0] + TWO_PI - 1e-12:
-        out = [(out[-1][0], out[0][1] + TWO_PI)] + out[1:-1]
+        out = [(out[-1][0], max(out[0][1] + TWO_PI, out[-1][1]))] + out[1:-1]
     if out and out[0][1] - out[0][0] >= TWO_PI - 1e-12:
         return [(0.0, TWO_PI)]
     return out
