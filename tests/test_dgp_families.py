@@ -12,6 +12,7 @@ two real families of {1, 3} with positive tensions, the lower hangs neutrally st
 direction of H_r), the higher is a saddle.
 """
 
+import json
 from dataclasses import replace
 from pathlib import Path
 
@@ -121,7 +122,7 @@ def test_the_real_families_are_listed_with_their_feasible_arcs():
     assert text.count("a family of equilibria turning about the line through B1, B3, G") == 2
     assert "2 admissible families of equilibria (not isolated; 2 of their listed poses certified)" in summary_line(result)
     assert not result.complete
-    members = result.to_dict()["subproblems"][0]["positive_dimensional"]["members"]
+    members = json.loads(json.dumps(result.to_dict()))["subproblems"][0]["positive_dimensional"]["members"]
     assert [m["certified"] for m in members] == [True, True]  # the certificates: the next test
 
 
