@@ -20,7 +20,7 @@ import numpy as np
 
 from cdpr_algebra.dgp.solve import (DGPResult, _solve_taut_set, _with_endpoint_certificates, dgp_table, incompleteness,
                                      summary_line)
-from cdpr_algebra.model.robot import load_robot
+from cdpr_algebra.model.robot import Robot, load_robot
 from cdpr_algebra.model.taut_equations import decode, encode
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -179,3 +179,38 @@ def test_a_beam_hung_from_four_cables_has_turning_families():
     # --settle does not search it: a continuum of solutions leaves every box around it undecided
     settled, records = settle_incomplete(beam, DGPResult((), (sub,), 0.0, 0, None))
     assert [r.outcome for r in records] == ["undecided"] and records[0].detail == FAMILY_NOT_SEARCHED
+
+
+def test_random_rods_have_turning_families_of_two_cables():
+    """Random 3-cable robots whose anchors and G lie on one line of the platform (the platform's x axis, so exactly
+    collinear in doubles): every 2-cable set is a family; each endpoint group holds 2 endpoints, and every listed
+    family's pose solves the statics (plain numpy) at turning angles across its arcs and is certified."""
+    listed, tracked = 0, 0
+    for seed in (11, 12):
+        rng = np.random.default_rng(seed)
+        base = rng.uniform(-4, 4, (3, 3)) + np.array([0, 0, 6])
+        s = np.sort(rng.uniform(-0.6, 0.6, 3))
+        platform = np.array([[v, 0.0, 0.0] for v in s])
+        com = np.array([rng.uniform(s[0], s[-1]), 0.0, 0.0])
+        lengths = np.linalg.norm(base - (base.mean(0) - [0, 0, 4.5]), axis=1) + rng.uniform(-0.3, 0.3, 3)
+        rod = Robot(base=base, platform=platform, com=com, load=1.0, load_direction=[0, 0, -1], lengths=lengths)
+        for cables in ((0, 1), (0, 2), (1, 2)):
+            sub, _, Z = _solve_taut_set(rod, lengths, cables, exclude=False)  # tracked even with no admissible
+            if sub.skipped:  # pruned: the distance conditions prove the set empty
+                assert "cannot" in sub.skipped and sub.complete
+                continue
+            tracked += 1
+            (sub,) = _with_endpoint_certificates(rod, lengths, [(cables, sub, Z)])
+            fam = sub.family
+            assert fam is not None and fam.endpoints == sub.outcomes["regular"] and set(fam.groups) == {2}
+            assert {f"B{c + 1}" for c in cables} | {"G"} <= set(fam.fixed) and not fam.tensions_change
+            for f in fam.members:
+                listed += 1
+                assert f.certified
+                lam = f.tensions[list(cables)] / lengths[list(cables)]
+                for lo, hi in f.arcs:
+                    for theta in np.linspace(lo, hi, 3):
+                        B = f.position + f.rotation @ rod.platform[cables[0]]
+                        p, R = _turned(f.position, f.rotation, B, f.axis, theta)
+                        assert _residual(rod, cables, encode(p, R, lam)) <= 1e-10
+    assert listed >= 2 and tracked >= 4
