@@ -214,7 +214,7 @@ def test_cli_json_contract(tmp_path, capsys):
     cap = capsys.readouterr()
     out = json.loads(cap.out)
     assert set(out) == {"status", "complete", "incomplete", "outcomes", "solutions", "subproblems", "seconds", "seed",
-                        "options", "admissible_complete", "settled"}
+                        "options", "admissible_complete", "settled", "families"}
     assert out["status"] == "complete" and out["complete"] is True and out["incomplete"] == [] and out["seed"] == 0
     assert out["admissible_complete"] is True and out["settled"] == []
     assert len(out["subproblems"]) == 3 and "[3/3]" in cap.err

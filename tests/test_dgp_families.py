@@ -122,7 +122,9 @@ def test_the_real_families_are_listed_with_their_feasible_arcs():
     assert text.count("a family of equilibria turning about the line through B1, B3, G") == 2
     assert "2 admissible families of equilibria (not isolated; 2 of their listed poses certified)" in summary_line(result)
     assert not result.complete
-    members = json.loads(json.dumps(result.to_dict()))["subproblems"][0]["positive_dimensional"]["members"]
+    out = json.loads(json.dumps(result.to_dict()))
+    members = out["subproblems"][0]["positive_dimensional"]["members"]
+    assert out["families"] == members and result.families == sub.family.members
     assert [m["certified"] for m in members] == [True, True]  # the certificates: the next test
 
 

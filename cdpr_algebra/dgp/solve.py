@@ -317,6 +317,12 @@ class DGPResult:
         """Every admissible equilibrium is known (each subproblem complete or settled), whatever the complex count."""
         return all(s.admissible_complete for s in self.subproblems)
 
+    @property
+    def families(self) -> tuple:
+        """The admissible families of turning equilibria of every subproblem (:class:`.positive_dimensional.
+        FamilyMember`: not isolated, so not among ``solutions``)."""
+        return tuple(f for s in self.subproblems if s.family is not None for f in s.family.members)
+
     def outcomes(self) -> dict:
         """Paths per outcome over all subproblems."""
         total = dict.fromkeys(OUTCOMES, 0)
@@ -330,6 +336,7 @@ class DGPResult:
                 "admissible_complete": self.admissible_complete,
                 "settled": [list(s.taut) for s in self.incomplete if s.settled is not None],
                 "outcomes": self.outcomes(), "solutions": [s.to_dict() for s in self.solutions],
+                "families": [f.to_dict() for f in self.families],
                 "subproblems": [s.to_dict() for s in self.subproblems], "seconds": self.seconds, "seed": self.seed,
                 "options": (self.options or default_options()).to_dict()}
 
@@ -827,7 +834,7 @@ def summary_line(result: DGPResult) -> str:
     cert = sum(s.certified or 0 for s in subs)
     cert_real = sum(s.certified_real or 0 for s in subs)
     excluded = sum(1 for s in subs if s.excluded is not None)
-    families = [f for s in subs if s.family is not None for f in s.family.members]
+    families = result.families
     return (f"paths {paths}: {o['regular']} regular, {o['singular']} singular, {o['at_infinity']} at infinity, "
             f"{o['failed']} failed; {sum(s.finite for s in subs)} finite ({cert} certified distinct roots, "
             f"{cert_real} of them proven real), {sum(s.real for s in subs)} real, "
