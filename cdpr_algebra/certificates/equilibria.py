@@ -468,18 +468,19 @@ def _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box
 
 def _one_cable_gauge(robot, i, R0):
     """(e1, e2, c, t) of the m = 1 formulation (module docstring), or None when G is at the anchor B_i."""
-    d = robot.load_direction
     gb = robot.com - robot.platform[i]
     if np.linalg.norm(gb) <= 1e-12 * robot.size:
         return None
-    e1 = np.cross(d, np.eye(3)[int(np.argmin(np.abs(d)))])
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(d, e1)
-    c = np.cross(gb, np.eye(3)[int(np.argmin(np.abs(gb)))])
-    c /= np.linalg.norm(c)
-    t = np.cross(d, R0 @ c)
-    t /= np.linalg.norm(t)
-    return tuple(v.tolist() for v in (e1, e2, c, t))
+    return _turning_gauge(robot.load_direction, gb, R0)
+
+
+def _turning_gauge(a, arm, R0):
+    """(e1, e2, c, t) of :func:`_gauged_system` for turns about the unit world axis ``a`` of the platform's line along
+    ``arm``: e1, e2 orthogonal to a and c to arm (unit vectors), t = a x (R0 c) normalized."""
+    e1, c = (np.cross(v, np.eye(3)[int(np.argmin(np.abs(v)))]) for v in (a, arm))
+    e1, c = e1 / np.linalg.norm(e1), c / np.linalg.norm(c)
+    t = np.cross(a, R0 @ c)
+    return tuple(v.tolist() for v in (e1, np.cross(a, e1), c, t / np.linalg.norm(t)))
 
 
 def _gauged_system(A, b, g, f, rho2, e1, e2, c, t):

@@ -27,7 +27,7 @@ from fractions import Fraction
 import numpy as np
 
 from .equilibria import (BOX_RTOL, FLINT, Certificate, _consequences, _failed, _gauged_system, _krawczyk,
-                         _robot_data, _scales)
+                         _robot_data, _scales, _turning_gauge)
 from cdpr_algebra.model.taut_equations import encode, to_cable_frame
 
 __all__ = ["certify_turning_equilibrium", "collinear_exactly"]
@@ -48,12 +48,6 @@ def collinear_exactly(points) -> bool:
     return True
 
 
-def _unit_orthogonal(v):
-    """A unit vector orthogonal to v."""
-    u = np.cross(v, np.eye(3)[int(np.argmin(np.abs(v)))])
-    return u / np.linalg.norm(u)
-
-
 def certify_turning_equilibrium(robot, lengths, cables, position, rotation, tensions,
                                 box_rtol: float = BOX_RTOL) -> Certificate:
     """Certificate of the reported pose of a family turning about the line of the taut anchors (0-based ``cables``,
@@ -72,13 +66,7 @@ def certify_turning_equilibrium(robot, lengths, cables, position, rotation, tens
     R0 = np.asarray(rotation, dtype=float)
     arms = robot.platform[taut] - robot.platform[taut[0]]
     arm = arms[int(np.argmax(np.linalg.norm(arms, axis=1)))]
-    a = R0 @ arm / np.linalg.norm(arm)
-    e1 = _unit_orthogonal(a)
-    e2 = np.cross(a, e1)
-    c = _unit_orthogonal(arm)
-    t = np.cross(a, R0 @ c)
-    t /= np.linalg.norm(t)
-    gauge = tuple(v.tolist() for v in (e1, e2, c, t))
+    gauge = _turning_gauge(R0 @ arm / np.linalg.norm(arm), arm, R0)
     frame = robot.cable_frame
     x0 = to_cable_frame(encode(np.asarray(position, float), R0, tensions / rho[taut])[None], frame)[0]
 

@@ -31,6 +31,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .refinement import relative_residual
+
 __all__ = ["ON_SET", "RANK_RTOL", "STEPS", "TRIALS", "LocalDimension", "local_dimension"]
 
 RANK_RTOL = 1e-6  # a singular value below this times sigma_1 (scaled Jacobian) counts as zero
@@ -62,7 +64,7 @@ class LocalDimension:
 
 
 def _relative_residual(F, x) -> float:
-    return float(np.max(np.abs(F)) / (1 + np.max(np.abs(x))))
+    return float(relative_residual(F[None], x[None])[0])
 
 
 class _Scaled:
@@ -77,8 +79,9 @@ class _Scaled:
 
 
 def _svd(J):
-    U, s, Vh = np.linalg.svd(J)
-    return U, s / max(s[0], 1e-300), Vh, s[0]
+    """(singular values relative to sigma_1, V^H) of J."""
+    _, s, Vh = np.linalg.svd(J)
+    return s / max(s[0], 1e-300), Vh
 
 
 def _project(G, y, r, steps=NEWTON_STEPS):
@@ -109,12 +112,10 @@ def local_dimension(evaluate, x0, scale=None, seed: int = 0) -> LocalDimension:
     scale = np.ones(n) if scale is None else np.asarray(scale, dtype=float)
     G = _Scaled(evaluate, scale)
     y = x0 / scale
-    _, J = G(y)
-    _, s, _, _ = _svd(J)
+    s, _ = _svd(G(y)[1])
     r = int(np.sum(s > RANK_RTOL))
     y, res0 = _project(G, y, r)
-    _, J = G(y)
-    _, s, Vh, _ = _svd(J)
+    s, Vh = _svd(G(y)[1])
     r = int(np.sum(s > RANK_RTOL))
     d = n - r
     x = y * scale
@@ -139,9 +140,7 @@ def local_dimension(evaluate, x0, scale=None, seed: int = 0) -> LocalDimension:
             y1, res = _project(G, y + eps * size * t, r)
             worst_eps = max(worst_eps, res)
             moved = np.max(np.abs((y1 - y) * scale)) / size
-            _, J1 = G(y1)
-            s1 = np.linalg.svd(J1, compute_uv=False)
-            keeps_rank = s1[r] <= RANK_RTOL * s1[0]
+            keeps_rank = _svd(G(y1)[1])[0][r] <= RANK_RTOL
             if not (res <= ON_SET and moved >= 0.5 * eps and keeps_rank):
                 on_set = False
         worst.append(worst_eps)
