@@ -78,6 +78,15 @@ def slack_arcs(robot, rho, slack, i, Bi, R0, axis, slack_tol: float = 1e-9) -> l
     return _merged(arcs)
 
 
+def middle_pose(arcs, axis, R0, Bi, bi):
+    """(R, position, arcs relative to it) of the pose in the middle of the largest of ``arcs``: the platform turned
+    from ``R0`` by that angle about the unit ``axis`` through its anchor point b_i' (``bi``), held at ``Bi``."""
+    lo, hi = max(arcs, key=lambda a: a[1] - a[0])
+    theta = 0.5 * (lo + hi)
+    R = rotation_about(axis, theta) @ R0
+    return R, Bi - R @ bi, tuple((a - theta, b - theta) for a, b in arcs)
+
+
 @dataclass(frozen=True)
 class OneCableEquilibrium:
     cable: int  # 0-based
@@ -105,10 +114,6 @@ def one_cable_equilibria(robot, cable: int, lengths=None, slack_tol: float = 1e-
             arcs = slack_arcs(robot, rho, [j for j in range(robot.n) if j != i], i, Bi, R0, d, slack_tol)
             if not arcs:
                 continue
-            lo, hi = max(arcs, key=lambda a: a[1] - a[0])
-            theta = 0.5 * (lo + hi)
-            R = rotation_about(d, theta) @ R0
-            position = Bi - R @ bl[i]
-            out.append(OneCableEquilibrium(i, position, R, s1 * robot.load, s1 > 0 and s2 > 0,
-                                           tuple((a - theta, b - theta) for a, b in arcs)))
+            R, position, relative = middle_pose(arcs, d, R0, Bi, bl[i])
+            out.append(OneCableEquilibrium(i, position, R, s1 * robot.load, s1 > 0 and s2 > 0, relative))
     return out

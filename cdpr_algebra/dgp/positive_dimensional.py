@@ -33,20 +33,22 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from cdpr_algebra.homotopy.clusters import duplicate_groups
 from cdpr_algebra.homotopy.local_dimension import local_dimension
-from cdpr_algebra.model.pose import angles_from_matrix, rotation_about, rotation_taking
+from cdpr_algebra.model.pose import angles_from_matrix, rotation_taking
 from cdpr_algebra.model.stability import stability_classes
 from cdpr_algebra.model.taut_equations import decode, encode
 from cdpr_algebra.report.jsonable import jsonable
 from .normalization import normalized_coordinates, normalized_problem, world_coordinates
-from .one_cable import slack_arcs
+from .one_cable import middle_pose, slack_arcs
 from .taut_system import fast_family
 
 __all__ = ["FIXED_RTOL", "INVARIANT_RTOL", "MAX_TESTED", "Family", "FamilyMember", "families_of_endpoints"]
 
 MAX_TESTED = 64  # uncertified endpoints tested per taut set (~10 ms each)
 FIXED_RTOL = 1e-6  # a point's speed along the tangent, relative to |omega| L, below which it is fixed by the motion
-INVARIANT_RTOL = 1e-6  # endpoints whose invariants (taut anchors / L, tensions / Q) agree to this are one family
+INVARIANT_RTOL = 1e-6  # endpoints whose invariants (taut anchors / L, tensions / Q) agree to this (relative to each
+# coordinate, duplicate_groups) are one family
 
 
 @dataclass(frozen=True)
@@ -202,10 +204,11 @@ def families_of_endpoints(robot, rho, cables, Z, tension_tol: float = 0.0) -> Fa
     return _turning_members(robot, rho, cables, W, family, tension_tol, residual)
 
 
-def _turning_members(robot, rho, cables, W, family, tension_tol, residual, certify=True) -> Family:
+def _turning_members(robot, rho, cables, W, family, tension_tol, residual) -> Family:
     """``family`` with its endpoints W (world coordinates, on the set) grouped into families of turning equilibria
-    and the real ones with positive tensions rebuilt (module doc); ``residual(x)``: relative residual of a world
-    root; ``certify``: each rebuilt pose's interval certificate (:mod:`cdpr_algebra.certificates.families`)."""
+    (endpoints whose invariants agree: :func:`cdpr_algebra.homotopy.clusters.duplicate_groups`) and the real ones
+    with positive tensions rebuilt and certified (module doc; :mod:`cdpr_algebra.certificates.families`);
+    ``residual(x)``: relative residual of a world root."""
     from cdpr_algebra.certificates.families import certify_turning_equilibrium
 
     m = len(cables)
@@ -214,14 +217,9 @@ def _turning_members(robot, rho, cables, W, family, tension_tol, residual, certi
     p, R, lam = decode(W, m)
     B = p[:, None, :] + np.einsum("kij,mj->kmi", R, robot.platform[idx])  # (N, m, 3) taut anchors
     inv = np.hstack([B.reshape(len(W), -1) / L, lam * rho[idx] / Q])
-    groups = []
-    for k, v in enumerate(inv):
-        for g in groups:
-            if np.max(np.abs(inv[g[0]] - v)) <= INVARIANT_RTOL * (1 + np.max(np.abs(v))):
-                g.append(k)
-                break
-        else:
-            groups.append([k])
+    groups = duplicate_groups(inv, INVARIANT_RTOL)
+    grouped = {k for g in groups for k in g}
+    groups = sorted([sorted(g) for g in groups] + [[k] for k in range(len(inv)) if k not in grouped])
     members, real = [], 0
     others = [j for j in range(robot.n) if j not in idx]
     for g in groups:
@@ -238,16 +236,12 @@ def _turning_members(robot, rho, cables, W, family, tension_tol, residual, certi
         arcs = slack_arcs(robot, rho, others, idx[0], Bg[0], R0, axis)
         if not arcs:
             continue
-        lo, hi = max(arcs, key=lambda a: a[1] - a[0])
-        theta = 0.5 * (lo + hi)
-        Rt = rotation_about(axis, theta) @ R0
-        pt = Bg[0] - Rt @ robot.platform[idx[0]]
+        Rt, pt, relative = middle_pose(arcs, axis, R0, Bg[0], robot.platform[idx[0]])
         tensions = np.zeros(robot.n)
         tensions[idx] = tau.real
         cls = stability_classes(robot.base[idx], pt + robot.platform[idx] @ Rt.T, pt + Rt @ robot.com, tau.real,
                                 rho[idx], robot.load, robot.size)
-        cert = certify_turning_equilibrium(robot, rho, idx, pt, Rt, tau.real) if certify else None
-        members.append(FamilyMember(tuple(i + 1 for i in idx), pt, Rt, tensions, axis,
-                                    tuple((a - theta, b - theta) for a, b in arcs),
-                                    residual(encode(pt, Rt, tau.real / rho[idx])), cls, cert))
+        members.append(FamilyMember(tuple(i + 1 for i in idx), pt, Rt, tensions, axis, relative,
+                                    residual(encode(pt, Rt, tau.real / rho[idx])), cls,
+                                    certify_turning_equilibrium(robot, rho, idx, pt, Rt, tau.real)))
     return replace(family, groups=tuple(len(g) for g in groups), real=real, members=tuple(members))
