@@ -1,7 +1,7 @@
 """Issue 15: taut sets whose equilibria form continuous families are named and their real families listed, not left
-as unexplained uncertified endpoints.  Robot: ``examples/symmetric_4cables.toml`` with its centre of mass moved into the platform's plane, at
-the platform's centre (a flat plate with its attachment points at the corners): with the cables on a diagonal
-taut, B1, B3 and G are collinear and the platform turns freely about that line.
+as unexplained uncertified endpoints.  Robot: ``examples/symmetric_4cables.toml`` with its centre of mass moved
+into the platform's plane, at the platform's centre (a flat plate with its attachment points at the corners): with
+the cables on a diagonal taut, B1, B3 and G are collinear and the platform turns freely about that line.
 
 Independent check of the verdict: the endpoints, turned about the line through B1 and B3 by any (complex) angle,
 still solve the taut equations, tensions unchanged (the family the test reports is there), and the same taut set
