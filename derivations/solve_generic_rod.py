@@ -1,0 +1,186 @@
+"""Compute, certify and store the generic solution sets of the rod systems ``rod_family(m)`` (m = 2 .. 5).
+
+Re-runnable, NOT a ``derive_*.py`` (monodromy and the trace test are randomized and take minutes):
+
+    python derivations/solve_generic_rod.py --m 2 3 5        # writes cdpr_algebra/data/rod_generic_m{m}.json
+    python derivations/solve_generic_rod.py --m 4 --chart 20131   # the witness points on a chart (m = 4 needs it)
+
+The rod system (:mod:`cdpr_algebra.model.rod_equations`) is what a taut set solves when its platform anchors and
+centre of mass lie on one line: one root per family of equilibria turning about that line.  No count is known from
+the literature, so none is aimed at:
+
+* seed point: random complex (G, u, lam, mu) with u.u = D.D, parameters by minimum-norm Gauss-Newton from a rod of
+  unit-size robot (exit points in [-0.6, 0.6]^3, lengths 0.55-1, s in [-1, 1], |D| 0.05-0.2, load 1 along -z) plus
+  complex noise (:func:`cdpr_algebra.homotopy.monodromy.seed_instance`);
+* monodromy with NO target count, until ``--no-progress`` consecutive loops add nothing; then ``--extra`` more loops
+  with every known solution tracked around each must add nothing (recorded);
+* the trace test (:func:`cdpr_algebra.homotopy.trace_test.verify_solution_completeness`, the certificate that a
+  monodromy solution set is complete) of the set found, in the line's pose coordinates (G, u), which separate the
+  solutions (checked by the test; lam and mu follow linearly from the pose and have poles along the test's curve,
+  which would multiply its witness points), recorded in the file's ``meta["trace_test"]``; a set whose
+  trace test does not pass is NOT stored (exit status 1);
+* ``--phc`` (where PHCpack's ``phc`` is installed): an independent count, recorded in the stored file's
+  ``meta["phc"]``: PHCpack's blackbox ``phc -b`` on a new random complex instance of the rod system, its regular
+  solutions de-duplicated (conditioning-aware, :func:`cdpr_algebra.homotopy.trace_test.distinct_points`), and the
+  stored set moved to that instance by a gamma-trick parameter homotopy and matched against them both ways.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT))
+
+from cdpr_algebra.homotopy.monodromy import MonodromyOptions, monodromy_solve, save_instance  # noqa: E402
+from cdpr_algebra.homotopy.trace_test import (TraceTestOptions, distinct_points,  # noqa: E402
+                                              verify_solution_completeness)
+from cdpr_algebra.model.rod_equations import ROD_M, rod_family  # noqa: E402
+
+DATA = ROOT / "cdpr_algebra" / "data"
+POSE_COORDINATES = list(range(6))  # the trace test in (G, u): lam and mu follow linearly and have poles on the curve
+
+
+def path_for(m: int) -> Path:
+    return DATA / f"rod_generic_m{m}.json"
+
+
+def unit_rod_guess(m: int, rng, noise: float = 0.3) -> np.ndarray:
+    """Parameters (A_i, rho_i^2, s_i, D.D, Q d) of a rod hung in a unit-size robot, plus complex noise."""
+    A = rng.uniform(-0.6, 0.6, size=(m, 3))
+    r2 = rng.uniform(0.55, 1.0, size=m) ** 2
+    s = rng.uniform(-1.0, 1.0, size=m)
+    DD = rng.uniform(0.05, 0.2) ** 2
+    p = np.concatenate([A.ravel(), r2, s, [DD], [0.0, 0.0, -1.0]])
+    return p + noise * (np.abs(p) + 0.1) * (rng.normal(size=p.size) + 1j * rng.normal(size=p.size))
+
+
+def seed_point(m: int, rng) -> np.ndarray:
+    """A random complex (G, u, lam, mu) with u.u = 0.15^2 (the guess's D.D is then adjusted to it)."""
+    u = rng.normal(size=3) + 1j * rng.normal(size=3)
+    u *= 0.15 / np.sqrt(u @ u)
+    return np.concatenate([0.3 * (rng.normal(size=3) + 1j * rng.normal(size=3)), u,
+                           rng.normal(size=m) + 1j * rng.normal(size=m), [rng.normal() + 1j * rng.normal()]])
+
+
+def solve_generic(m: int, seed: int = 1, no_progress: int = 8, extra: int = 3, verbose: bool = True,
+                  chart: int | None = None):
+    fam = rod_family(m)
+    rng = np.random.default_rng(seed)
+    t0 = time.perf_counter()
+    res = monodromy_solve(fam, seed=seed, x0=seed_point(m, rng), p_guess=unit_rod_guess(m, rng),
+                          options=MonodromyOptions(max_loops_no_progress=no_progress, max_loops=120))
+    if verbose:
+        print(f"m = {m}: {res.summary_line()}", flush=True)
+    check = monodromy_solve(fam, parameters=res.parameters, solutions=res.solutions, seed=seed + 1000,
+                            options=MonodromyOptions(max_loops_no_progress=extra, initial_loops=extra,
+                                                     max_loops=extra))
+    new = len(check.solutions) - len(res.solutions)
+    X = check.solutions
+    distinct = len(distinct_points(fam, res.parameters, X)[0])
+    if verbose:
+        print(f"m = {m}: check with {check.loops} extra loops ({check.paths_tracked} paths): {new} new; "
+              f"{distinct} distinct of {len(X)}", flush=True)
+    F, J = fam.evaluate_and_jacobian(X, res.parameters)
+    meta = {"m": m, "monodromy": res.to_dict(),
+            "check": {"extra_loops": check.loops, "paths_tracked": check.paths_tracked, "new_solutions": new,
+                      "seconds": check.seconds},
+            "distinct": distinct, "max_residual": float(np.max(np.abs(F))),
+            "max_jacobian_condition": float(np.max(np.linalg.cond(J))),
+            "scale": "unit-size robot: base centred at the origin, lengths / robot size, load Q d with Q = 1"}
+    t1 = time.perf_counter()
+    tr = verify_solution_completeness(fam, res.parameters, X, seed=seed, options=TraceTestOptions(),
+                                      verbose=verbose, coordinates=POSE_COORDINATES, chart=chart)
+    meta["trace_test"] = {"status": tr.trace.status, "count": int(len(X)), "seed": seed,
+                          "coordinates": [int(c) for c in tr.coordinates], "chart": chart,
+                          "W10_count": int(len(tr.W10)), "trace": tr.trace.to_dict(), "witnesses": tr.witnesses,
+                          "seconds": time.perf_counter() - t1}
+    meta["seconds"] = time.perf_counter() - t0
+    if verbose:
+        print(f"m = {m}: trace test {tr.trace.status} ({len(tr.W10)} witness points, "
+              f"{meta['trace_test']['seconds']:.1f} s): {tr.trace.to_dict()}", flush=True)
+    return res.parameters, X, meta
+
+
+def run_phc(m: int, seed: int = 7, timeout: float = 3600, verbose: bool = True) -> dict:
+    """PHCpack's count on a random complex instance, matched with the stored set moved there (module doc)."""
+    import sympy as sp
+
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from bench_homotopy import phc_run  # noqa: E402
+    from cdpr_algebra.homotopy.endgame import SolveOptions
+    from cdpr_algebra.homotopy.monodromy import load_instance
+    from cdpr_algebra.homotopy.solve import solve_parameter_homotopy
+    from cdpr_algebra.homotopy.systems import PolynomialSystem
+
+    fam = rod_family(m)
+    p0, X0, _ = load_instance(path_for(m), fam)
+    p = unit_rod_guess(m, np.random.default_rng(seed))
+    sub = {v: sp.Float(z.real, 17) + sp.Float(z.imag, 17) * sp.I for v, z in zip(fam.parameters, p)}
+    inst = PolynomialSystem([sp.expand(e.xreplace(sub)) for e in fam.equations], fam.variables, (), "rod_instance")
+    res = phc_run(inst, np.zeros(0), timeout=timeout)
+    if res is None or res["timeout"]:
+        return {"status": "phc not installed" if res is None else "timeout", "seed": seed}
+    P, _ = distinct_points(fam, p, res["solutions"])
+    moved = solve_parameter_homotopy(fam, p0, X0, p, seed=seed, gamma=True, options=SolveOptions())
+    Y, _ = distinct_points(fam, p, np.array([x.x for x in moved.solutions if not x.singular]).reshape(-1, fam.n))
+    d = np.max(np.abs(Y[:, None, :] - P[None, :, :]), axis=2) if len(Y) and len(P) else np.zeros((len(Y), len(P)))
+    close = d <= 1e-6 * (1 + np.max(np.abs(Y), axis=1))[:, None]
+    out = {"status": "finished", "seed": seed, "wall_seconds": res["wall"], "mixed_volume": res["paths"],
+           "regular": int(len(res["solutions"])), "phc_distinct": int(len(P)), "stored": int(len(X0)),
+           "stored_moved_distinct": int(len(Y)), "stored_matched": int(close.any(axis=1).sum()),
+           "phc_matched": int(close.any(axis=0).sum())}
+    if verbose:
+        print(f"m = {m}: PHCpack {out['phc_distinct']} distinct regular solutions (mixed volume "
+              f"{out['mixed_volume']}, {res['wall']:.0f} s); stored {len(X0)} moved there: {len(Y)} distinct, "
+              f"{out['stored_matched']} match a PHCpack solution, {out['phc_matched']} of PHCpack's matched", flush=True)
+    return out
+
+
+def record_phc(m: int, seed: int) -> int:
+    from cdpr_algebra.homotopy.monodromy import load_instance
+
+    p0, X0, data = load_instance(path_for(m), rod_family(m))
+    rec = run_phc(m, seed)
+    save_instance(path_for(m), rod_family(m), p0, X0, **{**data["meta"], "phc": rec})
+    agree = rec.get("status") == "finished" and rec["phc_distinct"] == rec["stored_matched"] == rec["phc_matched"] \
+        == rec["stored_moved_distinct"] == len(X0)
+    return 0 if agree else 1
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--m", type=int, nargs="+", default=list(ROD_M), choices=ROD_M)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--no-progress", type=int, default=8, help="monodromy loops in a row that add nothing")
+    ap.add_argument("--extra", type=int, default=3, help="extra monodromy loops that must find nothing new")
+    ap.add_argument("--chart", type=int, default=None, metavar="SEED",
+                    help="find the trace test's witness points on a random chart of projective space (points of "
+                         "very large norm are ordinary there)")
+    ap.add_argument("--phc", action="store_true", help="record PHCpack's count next to the stored sets (only)")
+    args = ap.parse_args(argv)
+    status = 0
+    if args.phc:
+        return max(record_phc(m, 7 + args.seed) for m in args.m)
+    for m in args.m:
+        params, X, meta = solve_generic(m, seed=args.seed, no_progress=args.no_progress, extra=args.extra,
+                                        chart=args.chart)
+        ok = (meta["check"]["new_solutions"] == 0 and meta["distinct"] == len(X)
+              and meta["trace_test"]["status"] == "passed")
+        print(f"m = {m}: {len(X)} solutions, residual {meta['max_residual']:.1e}, max cond "
+              f"{meta['max_jacobian_condition']:.1e}, {meta['seconds']:.1f} s: {'stored' if ok else 'NOT stored'}",
+              flush=True)
+        if ok:
+            save_instance(path_for(m), rod_family(m), params, X, **meta)
+        else:
+            status = 1
+    return status
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
