@@ -24,6 +24,10 @@ the taut equations there (its equations, not the test, make it an equilibrium), 
 certificate under a gauge that fixes the turning angle (:func:`cdpr_algebra.certificates.families.
 certify_turning_equilibrium`: the point, not the arc).  The subproblem stays incomplete: the list of families rests
 on the numerical test, and on every family having drawn a path.
+
+Taut sets of 2 .. 5 cables whose anchors and centre of mass are exactly collinear do not come here: the DGP solves
+them as a rod (:mod:`.rod`, complete and certified), and builds their listed families with :func:`turning_member`.
+What comes here are the other positive-dimensional sets, and families of data collinear only up to rounding.
 """
 
 from __future__ import annotations
@@ -43,8 +47,11 @@ from .normalization import normalized_coordinates, normalized_problem, world_coo
 from .one_cable import middle_pose, slack_arcs
 from .taut_system import fast_family
 
-__all__ = ["FIXED_RTOL", "INVARIANT_RTOL", "MAX_TESTED", "Family", "FamilyMember", "families_of_endpoints"]
+__all__ = ["FIXED_RTOL", "INVARIANT_RTOL", "LOCAL_DIMENSION", "MAX_TESTED", "ROD", "Family", "FamilyMember",
+           "families_of_endpoints", "turning_member", "world_residual"]
 
+LOCAL_DIMENSION = "numerical local dimension test"
+ROD = "rod system"
 MAX_TESTED = 64  # uncertified endpoints tested per taut set (~10 ms each)
 FIXED_RTOL = 1e-6  # a point's speed along the tangent, relative to |omega| L, below which it is fixed by the motion
 INVARIANT_RTOL = 1e-6  # endpoints whose invariants (taut anchors / L, tensions / Q) agree to this (relative to each
@@ -80,8 +87,9 @@ class FamilyMember:
                 "residual": self.residual, "certified": self.certified,
                 "certificate": None if self.certificate is None else self.certificate.to_dict()}
 
-    def describe(self, fixed=()) -> str:
-        """One line for the DGP's table: the family, its arcs, and the pose in the middle of the largest."""
+    def describe(self, fixed=(), method: str = "numerical local dimension test") -> str:
+        """One line for the DGP's table: the family, its arcs, and the pose in the middle of the largest; ``method``:
+        what says that the taut set's solutions are families."""
         arcs = ", ".join(f"{np.degrees(a):.1f}..{np.degrees(b):.1f}" for a, b in self.arcs)
         through = f"the line through {', '.join(fixed)}" if fixed else "an axis through the taut anchors"
         pose = " ".join(f"{v:.3f}" for v in self.position) + ", angles " + " ".join(
@@ -90,7 +98,7 @@ class FamilyMember:
         proof = ("that pose certified (interval proof of a gauge-fixed point; the arc is not)" if self.certified
                  else "not certified" + (f": {self.certificate.reason}" if self.certificate is not None else ""))
         return (f"taut {list(self.taut)}: a family of equilibria turning about {through}, the other cables slack "
-                f"over turning angles {arcs} deg (numerical local dimension test); in the middle: position {pose}, "
+                f"over turning angles {arcs} deg ({method}); in the middle: position {pose}, "
                 f"tensions {tau}, H_r {self.hessian} (residual {self.residual:.1e}); {proof}")
 
 
@@ -111,8 +119,16 @@ class Family:
     groups: tuple = ()  # endpoints per family of turning equilibria (complex ones too); () when not grouped
     real: int = 0  # of those families, the real ones with positive tensions
     members: tuple = ()  # FamilyMember: the real families with positive tensions and a feasible arc
+    method: str = LOCAL_DIMENSION  # or ROD: the families are the roots of the rod system (dgp.rod)
+    certified: int | None = None  # ROD: roots of the rod system proven distinct (whole families, real or complex)
 
     def describe(self) -> str:
+        if self.method == ROD:
+            return (f"the taut anchors and the centre of mass lie on one line (exactly, in the robot's binary data): "
+                    f"every equilibrium turns freely about it; solved as a rod (the line's own equations, dgp.rod): "
+                    f"{len(self.groups)} families ({self.certified} proven distinct roots), {self.real} real with "
+                    f"positive tensions, {len(self.members)} of them with turning angles at which the other cables "
+                    "are slack (listed as families)")
         dims = ", ".join(str(d) for d in self.dimensions)
         text = (f"{self.endpoints} regular endpoint(s) lie on a positive-dimensional solution set (dimension {dims}, "
                 f"numerical local dimension test): continuous families of equilibria, {_motion_words(self)}")
@@ -126,7 +142,7 @@ class Family:
     def to_dict(self) -> dict:
         return {"endpoints": self.endpoints, "dimensions": list(self.dimensions), "undecided": self.undecided,
                 "tested": self.tested, "fixed_points": list(self.fixed), "turns": self.turns,
-                "tensions_change": self.tensions_change, "test": "numerical local dimension test",
+                "tensions_change": self.tensions_change, "test": self.method, "certified": self.certified,
                 "families": len(self.groups), "endpoints_per_family": list(self.groups), "real_positive": self.real,
                 "members": [f.to_dict() for f in self.members]}
 
@@ -196,12 +212,22 @@ def families_of_endpoints(robot, rho, cables, Z, tension_tol: float = 0.0) -> Fa
     if family.dimensions != (1,) or not family.turns or family.tensions_change or not anchors <= set(family.fixed):
         return family
 
-    def residual(x):
-        xn = normalized_coordinates(x[None].astype(complex), m, c, L, Rw, cb, robot.load)
-        return float(np.max(np.abs(evaluate(xn[0])[0])) / (1 + np.max(np.abs(xn))))
-
     W = world_coordinates(np.array([r.point for r in on_set]), m, c, L, Rw, cb, robot.load)
-    return _turning_members(robot, rho, cables, W, family, tension_tol, residual)
+    return _turning_members(robot, rho, cables, W, family, tension_tol, world_residual(robot, rho, cables))
+
+
+def world_residual(robot, rho, cables):
+    """residual(x): the relative residual of the 0-based taut set's normalized 6-DOF system at the world root x
+    (p, u, v, w, lam)."""
+    m = len(cables)
+    target, c, L, Rw, cb = normalized_problem(robot, rho, cables)
+    fam = fast_family(m)
+
+    def residual(x):
+        xn = normalized_coordinates(np.asarray(x, dtype=complex)[None], m, c, L, Rw, cb, robot.load)
+        return float(np.max(np.abs(fam.evaluate(xn, target)[0])) / (1 + np.max(np.abs(xn))))
+
+    return residual
 
 
 def _turning_members(robot, rho, cables, W, family, tension_tol, residual) -> Family:
@@ -209,8 +235,6 @@ def _turning_members(robot, rho, cables, W, family, tension_tol, residual) -> Fa
     (endpoints whose invariants agree: :func:`cdpr_algebra.homotopy.clusters.duplicate_groups`) and the real ones
     with positive tensions rebuilt and certified (module doc; :mod:`cdpr_algebra.certificates.families`);
     ``residual(x)``: relative residual of a world root."""
-    from cdpr_algebra.certificates.families import certify_turning_equilibrium
-
     m = len(cables)
     idx = list(cables)
     L, Q = robot.cable_scale, robot.load
@@ -221,27 +245,40 @@ def _turning_members(robot, rho, cables, W, family, tension_tol, residual) -> Fa
     grouped = {k for g in groups for k in g}
     groups = sorted([sorted(g) for g in groups] + [[k] for k in range(len(inv)) if k not in grouped])
     members, real = [], 0
-    others = [j for j in range(robot.n) if j not in idx]
     for g in groups:
         v = inv[g[0]]
         tau = lam[g[0]] * rho[idx]
         if np.max(np.abs(v.imag)) > INVARIANT_RTOL * (1 + np.max(np.abs(v))) or np.any(tau.real <= tension_tol):
             continue
         real += 1
-        Bg = B[g[0]].real
-        far = int(np.argmax(np.linalg.norm(Bg - Bg[0], axis=1)))
-        axis = (Bg[far] - Bg[0]) / np.linalg.norm(Bg[far] - Bg[0])
-        arm = robot.platform[idx[far]] - robot.platform[idx[0]]
-        R0 = rotation_taking(arm / np.linalg.norm(arm), axis)
-        arcs = slack_arcs(robot, rho, others, idx[0], Bg[0], R0, axis)
-        if not arcs:
-            continue
-        Rt, pt, relative = middle_pose(arcs, axis, R0, Bg[0], robot.platform[idx[0]])
-        tensions = np.zeros(robot.n)
-        tensions[idx] = tau.real
-        cls = stability_classes(robot.base[idx], pt + robot.platform[idx] @ Rt.T, pt + Rt @ robot.com, tau.real,
-                                rho[idx], robot.load, robot.size)
-        members.append(FamilyMember(tuple(i + 1 for i in idx), pt, Rt, tensions, axis, relative,
-                                    residual(encode(pt, Rt, tau.real / rho[idx])), cls,
-                                    certify_turning_equilibrium(robot, rho, idx, pt, Rt, tau.real)))
+        member = turning_member(robot, rho, idx, B[g[0]].real, tau.real, residual)
+        if member is not None:
+            members.append(member)
     return replace(family, groups=tuple(len(g) for g in groups), real=real, members=tuple(members))
+
+
+def turning_member(robot, rho, idx, B, tau, residual) -> FamilyMember | None:
+    """The :class:`FamilyMember` of the real family of the 0-based taut cables ``idx`` whose taut anchors are at the
+    world points ``B`` (m x 3) with the positive ``tau`` (m): R0 takes the platform's anchor line to the world's,
+    the turning angles at which the other cables stay slack (:func:`.one_cable.slack_arcs`), the pose in the middle
+    of the largest arc with its residual (``residual(x)`` of a world root (p, u, v, w, lam)), H_r class and
+    certificate (:func:`cdpr_algebra.certificates.families.certify_turning_equilibrium`); None without a feasible
+    arc."""
+    from cdpr_algebra.certificates.families import certify_turning_equilibrium
+
+    far = int(np.argmax(np.linalg.norm(B - B[0], axis=1)))
+    axis = (B[far] - B[0]) / np.linalg.norm(B[far] - B[0])
+    arm = robot.platform[idx[far]] - robot.platform[idx[0]]
+    R0 = rotation_taking(arm / np.linalg.norm(arm), axis)
+    others = [j for j in range(robot.n) if j not in idx]
+    arcs = slack_arcs(robot, rho, others, idx[0], B[0], R0, axis)
+    if not arcs:
+        return None
+    Rt, pt, relative = middle_pose(arcs, axis, R0, B[0], robot.platform[idx[0]])
+    tensions = np.zeros(robot.n)
+    tensions[idx] = tau
+    cls = stability_classes(robot.base[idx], pt + robot.platform[idx] @ Rt.T, pt + Rt @ robot.com, tau, rho[idx],
+                            robot.load, robot.size)
+    return FamilyMember(tuple(i + 1 for i in idx), pt, Rt, tensions, axis, relative,
+                        residual(encode(pt, Rt, tau / rho[idx])), cls,
+                        certify_turning_equilibrium(robot, rho, idx, pt, Rt, tau))

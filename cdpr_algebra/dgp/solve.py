@@ -122,7 +122,8 @@ from cdpr_algebra.model.taut_equations import decode
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .normalization import normalized_problem, world_coordinates
 from .one_cable import one_cable_equilibria
-from .positive_dimensional import families_of_endpoints
+from .positive_dimensional import ROD, families_of_endpoints
+from .rod import rod_geometry, solve_rod_taut_set
 from .other_start import other_generic_instance
 from .tension_infinity import tension_infinity_undecided
 from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, study_roots, track_study_first
@@ -546,7 +547,10 @@ def excluded_subproblem(robot, rho, cables) -> DGPSubproblem | None:
                          excluded=boxes)
 
 
-def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bool = True):
+def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bool = True, rods: bool = True):
+    """(DGPSubproblem, admissible DGPSolutions, regular endpoints in world coordinates or None) of the 0-based taut
+    set ``cables``; ``rods`` False tracks a taut set on a line with the 6-DOF homotopy too (tests: the two routes
+    cross-checked)."""
     t0 = time.perf_counter()
     cables = tuple(cables)
     taut1 = tuple(c + 1 for c in cables)
@@ -560,6 +564,10 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
         sub = excluded_subproblem(robot, rho, cables)
         if sub is not None:
             return sub, [], None
+    line = rod_geometry(robot, cables) if rods else None
+    if line is not None:  # taut anchors and G on one line: families, solved as a rod (dgp.rod)
+        fields = solve_rod_taut_set(robot, rho, cables, line, seed, options, TENSION_RTOL * robot.load)
+        return DGPSubproblem(taut1, seconds=time.perf_counter() - t0, **fields), [], None
     if not generic_path(m).exists():
         return DGPSubproblem(taut1, 0, 0, 0, 0, time.perf_counter() - t0,
                              f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})",
@@ -808,7 +816,7 @@ def dgp_table(result: DGPResult, n: int) -> str:
                      + ", ".join(str(list(s.taut)) for s in excluded))
     for s in result.subproblems:
         for f in s.family.members if s.family is not None else ():
-            lines.append("  " + f.describe(s.family.fixed))
+            lines.append("  " + f.describe(s.family.fixed, s.family.method))
     for s in result.subproblems:
         if s.excluded is not None:
             continue
@@ -853,7 +861,8 @@ def incompleteness(sub: DGPSubproblem) -> str:
     if sub.failed_paths:
         why = ", ".join(f"{v} {k.replace('_', ' ')}" for k, v in sorted(sub.failures.items()))
         parts.append(f"{sub.failed_paths} of {sub.paths} paths failed ({why})")
-    if sub.uncertified and (sub.family is None or sub.family.endpoints < sum(sub.uncertified.values())):
+    if sub.uncertified and (sub.family is None or sub.family.method == ROD
+                            or sub.family.endpoints < sum(sub.uncertified.values())):
         why = "; ".join(f"{v}: {k}" for k, v in sorted(sub.uncertified.items()))
         parts.append(f"{sum(sub.uncertified.values())} regular endpoint(s) not certified ({why})")
     if sub.family is not None:  # the certificates refuse points of a positive-dimensional set: its account says why
