@@ -150,3 +150,20 @@ def test_random_rods_solved_as_rods_match_the_six_dof_homotopy():
                 assert min(np.max(np.abs(v - _invariants(g, rod, cables))) for g in six.members) <= 1e-7
             compared += 1
     assert compared >= 4
+
+
+def test_a_rod_path_forced_to_fail_leaves_the_subproblem_incomplete():
+    """A step budget too small for any path: every outcome failed and counted, the subproblem incomplete and saying
+    why, the families not claimed complete."""
+    from cdpr_algebra.dgp.solve import incompleteness
+    from cdpr_algebra.homotopy.endgame import SolveOptions
+    from cdpr_algebra.homotopy.tracker import TrackerOptions
+
+    flat = _flat()
+    bad = SolveOptions(tracker=TrackerOptions(max_steps=3), retry_tight=False, retry_mpmath=False)
+    sub = _solved(flat, (0, 2), options=bad)
+    assert sub.family.method == "rod system" and not sub.complete
+    assert sub.failed_paths > 0 and sum(sub.outcomes.values()) == sub.paths == sub.generic_count
+    assert "paths failed" in incompleteness(sub)
+    out = json.loads(json.dumps(DGPResult((), (sub,), 0.0, 0, None).to_dict()))
+    assert out["complete"] is False and out["incomplete"] == [[1, 3]]

@@ -87,7 +87,7 @@ class FamilyMember:
                 "residual": self.residual, "certified": self.certified,
                 "certificate": None if self.certificate is None else self.certificate.to_dict()}
 
-    def describe(self, fixed=(), method: str = "numerical local dimension test") -> str:
+    def describe(self, fixed=(), method: str = LOCAL_DIMENSION) -> str:
         """One line for the DGP's table: the family, its arcs, and the pose in the middle of the largest; ``method``:
         what says that the taut set's solutions are families."""
         arcs = ", ".join(f"{np.degrees(a):.1f}..{np.degrees(b):.1f}" for a, b in self.arcs)
