@@ -28,7 +28,7 @@ sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "derivations"))
 
 from codegen import HEADER, write  # noqa: E402
-from derive_taut_equations import _block, _nonzero  # noqa: E402
+from derive_taut_equations import _nonzero, _split_block  # noqa: E402
 from cdpr_algebra.model.rod_equations import ROD_M, rod_family  # noqa: E402
 
 TARGET = "cdpr_algebra/generated/rod_equations.py"
@@ -75,6 +75,11 @@ def _check(pose, lam, mu, cpar, gpar, head, glob, length, part):
             raise AssertionError(f"m = {m}: the per-cable template does not give rows {bad} of the rod family")
 
 
+def _jacobian_flag(lines):
+    """The lines of :func:`derive_taut_equations._split_block` with its flag named ``jacobian``."""
+    return [line.replace("if with_ht:", "if jacobian:") for line in lines]
+
+
 def generate() -> dict[str, str]:
     pose, lam, mu, cpar, gpar, head, glob, length, part = _template()
     L = ["", "", "def rod_equations(x, p, F, J, jacobian):",
@@ -89,21 +94,21 @@ def generate() -> dict[str, str]:
     jg = _nonzero(glob, pose)
     jp = _nonzero(part, pose)
     acc = sorted(set(jg) | set(jp))
-    L += _block([("F[0]", head)] + [(f"s{k}", e) for k, e in enumerate(glob)], 4)
+    # F first, J under ``if jacobian:``, common subexpressions shared (the helper writes its flag as with_ht)
     L += [f"    j{r}_{c} = 0.0" for r, c in acc if (r, c) not in jg]
-    L += ["    if jacobian:"] + _block([(f"J[0, {c}]", e) for (_, c), e in sorted(jh.items())]
-                                   + [(f"j{r}_{c}", e) for (r, c), e in sorted(jg.items())]
-                                   + [(f"J[rm + {k}, jm]", sp.diff(glob[3 + k], mu)) for k in range(3)], 8)
+    L += _jacobian_flag(_split_block([("F[0]", head)] + [(f"s{k}", e) for k, e in enumerate(glob)],
+                                     [(f"J[0, {c}]", e) for (_, c), e in sorted(jh.items())]
+                                     + [(f"j{r}_{c}", e) for (r, c), e in sorted(jg.items())]
+                                     + [(f"J[rm + {k}, jm]", sp.diff(glob[3 + k], mu)) for k in range(3)], 4, []))
     L += ["    for i in range(m):"]
     L += [f"        {s} = p[ia + 3 * i + {k}]" for k, s in enumerate(cpar[:3])]
     L += ["        r2 = p[ir + i]", "        s = p[i_s + i]", "        lam = x[6 + i]"]
-    L += _block([("F[1 + i]", length)] + [(f"s{k} +", e) for k, e in enumerate(part)], 8)
     jl = _nonzero([length], pose)
-    L += ["        if jacobian:"]
-    L += _block([(f"J[1 + i, {c}]", e) for (_, c), e in sorted(jl.items())]
-                + [(f"j{r}_{c} +", e) for (r, c), e in sorted(jp.items())]
-                + [(f"J[{'rf' if k < 3 else 'rm'} + {k % 3}, 6 + i]", sp.diff(e, lam)) for k, e in enumerate(part)],
-                12)
+    L += _jacobian_flag(_split_block(
+        [("F[1 + i]", length)] + [(f"s{k} +", e) for k, e in enumerate(part)],
+        [(f"J[1 + i, {c}]", e) for (_, c), e in sorted(jl.items())]
+        + [(f"j{r}_{c} +", e) for (r, c), e in sorted(jp.items())]
+        + [(f"J[{'rf' if k < 3 else 'rm'} + {k % 3}, 6 + i]", sp.diff(e, lam)) for k, e in enumerate(part)], 8, []))
     L += [f"    F[{'rf' if k < 3 else 'rm'} + {k % 3}] = s{k}" for k in range(6)]
     L += ["    if jacobian:"]
     L += [f"        J[{'rf' if r < 3 else 'rm'} + {r % 3}, {c}] = j{r}_{c}" for r, c in acc]

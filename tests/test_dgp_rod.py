@@ -19,10 +19,10 @@ import pytest
 
 from cdpr_algebra.dgp.rod import rod_generic_path, rod_geometry
 from cdpr_algebra.dgp.solve import DGPResult, _solve_taut_set, _with_endpoint_certificates, dgp_table, summary_line
-from cdpr_algebra.model.robot import Robot, load_robot
+from cdpr_algebra.model.robot import load_robot
 from cdpr_algebra.model.rod_equations import ROD_M, line_coordinates
 from cdpr_algebra.model.taut_equations import encode
-from test_dgp_families import _residual, _turned
+from test_dgp_families import _residual, _turned, random_rod
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -131,13 +131,7 @@ def test_random_rods_solved_as_rods_match_the_six_dof_homotopy():
     families are the 6-DOF homotopy's groups (count, real ones, invariants)."""
     compared = 0
     for seed in (11, 12):
-        rng = np.random.default_rng(seed)
-        base = rng.uniform(-4, 4, (3, 3)) + np.array([0, 0, 6])
-        s = np.sort(rng.uniform(-0.6, 0.6, 3))
-        platform = np.array([[v, 0.0, 0.0] for v in s])
-        com = np.array([rng.uniform(s[0], s[-1]), 0.0, 0.0])
-        lengths = np.linalg.norm(base - (base.mean(0) - [0, 0, 4.5]), axis=1) + rng.uniform(-0.3, 0.3, 3)
-        rod = Robot(base=base, platform=platform, com=com, load=1.0, load_direction=[0, 0, -1], lengths=lengths)
+        rod = random_rod(seed)
         for cables in ((0, 1), (0, 2), (1, 2), (0, 1, 2)):
             sub = _solved(rod, cables, exclude=False)
             if sub.skipped:
