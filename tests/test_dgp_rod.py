@@ -161,3 +161,24 @@ def test_a_rod_path_forced_to_fail_leaves_the_subproblem_incomplete():
     assert "paths failed" in incompleteness(sub)
     out = json.loads(json.dumps(DGPResult((), (sub,), 0.0, 0, None).to_dict()))
     assert out["complete"] is False and out["incomplete"] == [[1, 3]]
+
+
+@pytest.mark.parametrize("m", ROD_M)
+def test_the_generated_rod_evaluator_is_the_sympy_family(m):
+    """The tracker's system (the generated evaluator on numpy columns) against the sympy family's own evaluators at
+    random complex points and parameters (one row, and one row per point), and its directional parameter derivative
+    against dF/dp . dp; the parameters are not modified by the evaluation."""
+    from cdpr_algebra.dgp.rod import fast_rod_family
+    from cdpr_algebra.model.rod_equations import rod_family
+
+    rng = np.random.default_rng(m)
+    fast, fam = fast_rod_family(m), rod_family(m)
+    x = rng.normal(size=(4, fam.n)) + 1j * rng.normal(size=(4, fam.n))
+    dp = rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m)
+    for p in (rng.normal(size=fam.m) + 1j * rng.normal(size=fam.m), rng.normal(size=(4, fam.m)) + 0j):
+        kept = p.copy()
+        F0, J0, JP0 = fam.evaluate_all(x, p)
+        F, J, H = fast.evaluate_directional(x, p, dp)
+        assert np.max(np.abs(F - F0)) <= 1e-13 and np.max(np.abs(J - J0)) <= 1e-13
+        assert np.max(np.abs(H - np.einsum("nik,k->ni", JP0, dp))) <= 1e-12
+        assert np.array_equal(p, kept)

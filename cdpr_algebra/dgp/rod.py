@@ -30,27 +30,88 @@ from pathlib import Path
 
 import numpy as np
 
+from cdpr_algebra.generated.rod_equations import rod_equations
 from cdpr_algebra.homotopy.results import FAILURES, outcome_counts
-from cdpr_algebra.model.rod_equations import ROD_M, line_coordinates, rod_parameters
+from cdpr_algebra.model.rod_equations import ROD_M, line_coordinates, rod_family, rod_parameters
 from .positive_dimensional import ROD, Family, turning_member, world_residual
+from .taut_system import LazyFamilySystem
 
-__all__ = ["rod_geometry", "rod_generic_path", "solve_rod_taut_set"]
+__all__ = ["FastRodSystem", "fast_rod_family", "rod_geometry", "rod_generic_path", "solve_rod_taut_set"]
 
 REAL_TOL = 1e-8  # imaginary parts (relative) under which an uncertified root counts as real
 _GENERIC: dict = {}
+_FAST: dict = {}
 
 
 def rod_generic_path(m: int) -> Path:
     return Path(__file__).resolve().parent.parent / "data" / f"rod_generic_m{m}.json"
 
 
+class FastRodSystem(LazyFamilySystem):
+    """:func:`cdpr_algebra.model.rod_equations.rod_family` (m) evaluated by its generated evaluator
+    (:mod:`cdpr_algebra.generated.rod_equations`) on numpy columns, vectorized over the points; the sympy family
+    (name, hash, mpmath evaluators: the engine's projective and arbitrary-precision retries) is built only when
+    something asks for it."""
+
+    family_builder = staticmethod(rod_family)
+    compiled_kernels = None  # numpy tracking, vectorized over the paths (answered here: asking builds the family)
+    compiled_residual_dd = None
+    chart_kernels = None
+
+    def __init__(self, m: int):
+        super().__init__(m)
+        self.n = self.neq = m + 7  # G, u, lam, mu
+        self.m = 5 * m + 4  # A_i, rho_i^2, s_i, D.D, Q d
+
+    @property
+    def degrees(self) -> tuple:
+        return (2,) * self.neq
+
+    def _eval(self, x, p, jac: bool):
+        x = np.asarray(x, dtype=complex)
+        x = x[None, :] if x.ndim == 1 else x
+        N = len(x)
+        P = np.asarray(p, dtype=complex)
+        # parameters as rows (m, N), a fresh copy: the evaluator accumulates sums in place from parameter entries
+        P = np.array(np.broadcast_to(P.T if P.ndim == 2 else P[:, None], (self.m, N)))
+        F = np.zeros((self.neq, N), dtype=complex)
+        J = np.zeros((self.neq, self.n, N), dtype=complex) if jac else None
+        rod_equations(list(x.T), P, F, J, jac)
+        return F.T, (np.moveaxis(J, 2, 0) if jac else None)
+
+    def evaluate(self, x, p=None):
+        return self._eval(x, p, False)[0]
+
+    def evaluate_and_jacobian(self, x, p=None):
+        return self._eval(x, p, True)
+
+    def evaluate_directional(self, x, p, dp):
+        """F, dF/dx and the derivative of F along the parameter direction dp: every equation has degree <= 2 in the
+        parameters (A, rho^2, s, D.D, Q d), so the central difference (F(p + dp) - F(p - dp)) / 2 is exact up to
+        rounding."""
+        F, J = self._eval(x, p, True)
+        p, dp = np.asarray(p, dtype=complex), np.asarray(dp, dtype=complex)
+        return F, J, 0.5 * (self._eval(x, p + dp, False)[0] - self._eval(x, p - dp, False)[0])
+
+    def evaluate_all(self, x, p=None):
+        return self.family.evaluate_all(x, p)
+
+
+def fast_rod_family(m: int) -> FastRodSystem:
+    if m not in _FAST:
+        _FAST[m] = FastRodSystem(m)
+    return _FAST[m]
+
+
 def _generic(m: int):
-    """(parameters, solutions) of the stored generic rod set of ``m`` (hash checked against the sympy family)."""
+    """(parameters, solutions) of the stored generic rod set of ``m``, checked to solve the generated equations (the
+    stored hash against the sympy family: tests/test_dgp_rod.py)."""
     if m not in _GENERIC:
         from cdpr_algebra.homotopy.monodromy import load_instance
-        from cdpr_algebra.model.rod_equations import rod_family
 
-        p, X, _ = load_instance(rod_generic_path(m), rod_family(m))
+        p, X, _ = load_instance(rod_generic_path(m))
+        if not np.max(np.abs(fast_rod_family(m).evaluate(X, p))) <= 1e-8 * (1 + np.max(np.abs(X))):
+            raise ValueError(f"{rod_generic_path(m)}: the stored solutions do not solve the rod equations")
         _GENERIC[m] = (p, X)
     return _GENERIC[m]
 
@@ -88,10 +149,9 @@ def _world(X, m, c, L, Rw, Q):
 def _track(m, target, seed, gamma, options):
     from cdpr_algebra.homotopy.endgame import SolveOptions
     from cdpr_algebra.homotopy.solve import solve_parameter_homotopy
-    from cdpr_algebra.model.rod_equations import rod_family
 
     p0, X0 = _generic(m)
-    res = solve_parameter_homotopy(rod_family(m), p0, X0, target, seed=seed, gamma=gamma,
+    res = solve_parameter_homotopy(fast_rod_family(m), p0, X0, target, seed=seed, gamma=gamma,
                                    options=options or SolveOptions(retry_mpmath=False))
     return res, sum(1 for p in res.track.paths if p.status in FAILURES)
 
