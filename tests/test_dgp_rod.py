@@ -182,3 +182,17 @@ def test_the_generated_rod_evaluator_is_the_sympy_family(m):
         assert np.max(np.abs(F - F0)) <= 1e-13 and np.max(np.abs(J - J0)) <= 1e-13
         assert np.max(np.abs(H - np.einsum("nik,k->ni", JP0, dp))) <= 1e-12
         assert np.array_equal(p, kept)
+
+
+def test_singular_endpoints_on_a_family_leave_the_six_dof_route_incomplete():
+    """Seed 002's 8-cable robot: B1, B5 and G are collinear, so {1, 5} is a rod (complete, 12 certified roots).  Its
+    6-DOF homotopy ends all 24 paths on the families' circles labelled singular; those endpoints are not isolated
+    roots of some multiplicity, so that route is incomplete and names the families -- the same 12, 2 of them real
+    with positive tensions, as the rod's."""
+    robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
+    rod = _solved(robot, (0, 4))
+    assert rod.complete and rod.family.method == "rod system" and rod.certified == rod.paths
+    six = _solved(robot, (0, 4), rods=False)
+    assert six.outcomes["singular"] > 0 and not six.complete
+    assert six.family is not None and six.family.method == "numerical local dimension test"
+    assert len(six.family.groups) == len(rod.family.groups) and six.family.real == rod.family.real

@@ -105,7 +105,7 @@ class FamilyMember:
 @dataclass(frozen=True)
 class Family:
     """The positive-dimensional part of a taut set's solutions as the local dimension test saw it: ``endpoints``
-    regular endpoints on positive-dimensional sets (of ``dimensions``), ``undecided`` endpoints where the test could
+    endpoints (regular ones the certificates refuse, or singular ones) on positive-dimensional sets (of ``dimensions``), ``undecided`` endpoints where the test could
     not tell, ``tested`` endpoints tested; the motion at the first one: ``fixed`` the names of the points it leaves
     fixed ('B1', .., 'G'), ``turns`` (the platform turns, not only translates) and ``tensions_change``."""
 
@@ -130,7 +130,7 @@ class Family:
                     f"positive tensions, {len(self.members)} of them with turning angles at which the other cables "
                     "are slack (listed as families)")
         dims = ", ".join(str(d) for d in self.dimensions)
-        text = (f"{self.endpoints} regular endpoint(s) lie on a positive-dimensional solution set (dimension {dims}, "
+        text = (f"{self.endpoints} endpoint(s) lie on a positive-dimensional solution set (dimension {dims}, "
                 f"numerical local dimension test): continuous families of equilibria, {_motion_words(self)}")
         if not self.groups:
             return text + "; the DGP lists isolated equilibria only, so this taut set's are not listed"

@@ -215,8 +215,10 @@ class DGPSubproblem:
     outcomes account for the generic count, and every regular endpoint is certified (or the set is proven empty by
     pruning, or proven to hold no admissible equilibrium by the interval filter -- ``excluded``, not tracked, its
     inadmissible solutions not counted -- or solved analytically); ``family``: when regular endpoints that the
-    certificates refuse lie on a positive-dimensional solution set, what :mod:`.positive_dimensional` saw there
-    (the real families of turning equilibria listed; the subproblem stays incomplete)."""
+    certificates refuse, or singular endpoints, lie on a positive-dimensional solution set, what
+    :mod:`.positive_dimensional` saw there (the real families of turning equilibria listed; the subproblem stays
+    incomplete), or, for a taut set solved as a rod (:mod:`.rod`), its families, one per root (complete when the
+    rod's account is)."""
 
     taut: tuple  # 1-based
     paths: int
@@ -632,9 +634,16 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     failures = dict(Counter(p.status for p in paths if p.status in FAILURES))
     retried = dict(Counter(p.retried for p in paths if p.retried))  # paths per kind of retry
     generic = len(_generic(m)[1])
+    # singular endpoints count as isolated roots of some multiplicity only where they are not on a positive-dimensional
+    # set (measured, twenty-fifth session: seed 002's {1, 5}, B1, B5 and G collinear, tracked by this homotopy, ended
+    # its 24 paths on its families' circles labelled singular, and the subproblem counted as complete)
+    singular = np.array([s.x for s in res.solutions if s.singular]).reshape(-1, fam.n)
+    family = families_of_endpoints(robot, rho, cables, world_coordinates(singular, m, c, L, Rw, cb, robot.load),
+                                   TENSION_RTOL * robot.load) if len(singular) else None
     # complete only once the regular endpoints are certified (_with_endpoint_certificates)
     sub = DGPSubproblem(taut1, len(paths), finite, int(np.sum(real)), len(sols), time.perf_counter() - t0,
-                        outcomes=outcomes, failures=failures, complete=False, generic_count=generic, retried=retried)
+                        outcomes=outcomes, failures=failures, complete=False, generic_count=generic, retried=retried,
+                        family=family)
     regular = np.array([s.x for s in res.solutions if not s.singular]).reshape(-1, fam.n)
     return sub, sols, world_coordinates(regular, m, c, L, Rw, cb, robot.load)
 
@@ -690,9 +699,11 @@ def _with_endpoint_certificates(robot, rho, items) -> list:
                     r = "its box meets another root's box (not proven distinct)" if o else reason
                     why[r] = why.get(r, 0) + 1
             certified = int(ok.sum())
-            complete = sub.accounted and certified == len(ok) == sub.outcomes["regular"]
+            # a singular endpoint on a positive-dimensional set (sub.family, _solve_taut_set) leaves it incomplete
+            complete = sub.accounted and certified == len(ok) == sub.outcomes["regular"] and sub.family is None
             family = families_of_endpoints(robot, rho, items[k][0], items[k][2][~ok], TENSION_RTOL * robot.load) \
                 if not ok.all() else None
+            family = family or sub.family
             out[k] = replace(sub, certified=certified, certified_real=int(np.sum(ok & boxes.real)), uncertified=why,
                              complete=complete, family=family)
     return out
