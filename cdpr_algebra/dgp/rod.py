@@ -3,29 +3,26 @@
 With the taut anchors B_i and the centre of mass G exactly collinear on the platform (a flat plate with G at its
 centre and cables on a diagonal, a beam), every equilibrium of the taut set turns freely about that line: the 6-DOF
 system's solutions are circles, and its homotopy's endpoints are not isolated roots to certify or count
-(:mod:`.positive_dimensional`).  The line itself is a 5-DOF body with isolated equilibria: the rod system of
-:mod:`cdpr_algebra.model.rod_equations`, one root per family.  Here it is solved as every taut set is: a parameter
+(:mod:`.positive_dimensional`). The line itself is a 5-DOF body with isolated equilibria: the rod system of
+:mod:`cdpr_algebra.model.rod_equations`, one root per family. Here it is solved as every taut set is: a parameter
 homotopy from a stored generic solution set (``cdpr_algebra/data/rod_generic_m{m}.json``, m = 2 .. 5, found by
-monodromy without a target count and certified complete by a trace test, ``derivations/solve_generic_rod.py``) to the
-robot's normalized problem, every path with one outcome; the regular endpoints are certified in interval arithmetic
-(:func:`cdpr_algebra.certificates.rods.certify_rod_roots`: unique in pairwise disjoint boxes, real or not proven),
-and the subproblem is complete when no path failed, the outcomes add up to the generic count and every regular
-endpoint is certified: then the families are all known.  Each real family with positive tensions is rebuilt as a
-6-DOF pose turning about the line, with the turning angles at which the other cables stay slack
-(:func:`.positive_dimensional.turning_member`).
+monodromy without a target count, with a trace test and PHCpack's count on another instance recorded,
+``derivations/solve_generic_rod.py``) to the robot's normalized problem, every path with one outcome; the regular
+endpoints are certified in interval arithmetic (:func:`cdpr_algebra.certificates.rods.certify_rod_roots`: unique in
+pairwise disjoint boxes, real or not proven), and the subproblem is complete when no path failed, the outcomes add
+up to the generic count and every regular endpoint is certified: then the families are all known. Each real family
+with positive tensions is rebuilt as a 6-DOF pose turning about the line, with the turning angles at which the other
+cables stay slack (:func:`.positive_dimensional.turning_member`).
 
 Collinearity is decided in exact rational arithmetic on the robot's doubles
 (:func:`cdpr_algebra.certificates.families.collinear_exactly`): data collinear on paper but not once rounded are
-solved by the 6-DOF homotopy (their families are then isolated points of a nearby system).  m = 1 is analytic
-(:mod:`.one_cable`); m >= 6 anchors on a line are over-determined by their lengths and stay with the 6-DOF
-homotopy.
+solved by the 6-DOF homotopy (their families are then isolated points of a nearby system). m = 1 is analytic
+(:mod:`.one_cable`); m >= 6 anchors on a line are over-determined by their lengths and stay with the 6-DOF homotopy.
 """
 
 from __future__ import annotations
 
-import time
 from collections import Counter
-from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
