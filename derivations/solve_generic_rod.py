@@ -145,8 +145,36 @@ def run_phc(m: int, seed: int = 7, timeout: float = 3600, verbose: bool = True) 
     if verbose:
         print(f"m = {m}: PHCpack {out['phc_distinct']} distinct regular solutions (mixed volume "
               f"{out['mixed_volume']}, {res['wall']:.0f} s); stored {len(X0)} moved there: {len(Y)} distinct, "
-              f"{out['stored_matched']} match a PHCpack solution, {out['phc_matched']} of PHCpack's matched", flush=True)
+              f"{out['stored_matched']} match a PHCpack solution, {out['phc_matched']} of PHCpack's matched",
+              flush=True)
     return out
+
+
+def retrace(m: int, seed: int, eps: float, chart: int | None = None, verbose: bool = True) -> int:
+    """The trace test of the stored set again with the pencil tracked to +-eps (a larger eps gives every point a
+    larger second difference, the test's separation), recorded in ``meta["trace_test"]`` when it passes (the
+    previous record kept in its ``history``); exit status 0 when it passed."""
+    from cdpr_algebra.homotopy.monodromy import load_instance
+
+    fam = rod_family(m)
+    p0, X0, data = load_instance(path_for(m), fam)
+    t0 = time.perf_counter()
+    tr = verify_solution_completeness(fam, p0, X0, seed=seed, options=TraceTestOptions(eps=eps), verbose=verbose,
+                                      coordinates=POSE_COORDINATES, chart=chart)
+    rec = {"status": tr.trace.status, "count": int(len(X0)), "seed": seed,
+           "coordinates": [int(c) for c in tr.coordinates], "chart": chart, "W10_count": int(len(tr.W10)),
+           "trace": tr.trace.to_dict(), "witnesses": tr.witnesses, "seconds": time.perf_counter() - t0}
+    t = tr.trace
+    print(f"m = {m}: trace test with eps = {eps}: {t.status}, relative {t.relative:.1e}, detection {t.detection:.1e} "
+          f"(tol {t.tol:.0e}), {len(tr.W10)} witness points, {rec['seconds']:.0f} s", flush=True)
+    if t.status != "passed":
+        return 1
+    old = dict(data["meta"]["trace_test"])
+    history = old.pop("history", []) + [{k: old[k] for k in ("status", "seed", "W10_count", "seconds")}
+                                        | {"relative": old["trace"]["relative"], "detection": old["trace"]["detection"],
+                                           "eps": old["trace"].get("eps")}]
+    save_instance(path_for(m), fam, p0, X0, **{**data["meta"], "trace_test": {**rec, "history": history}})
+    return 0
 
 
 def record_phc(m: int, seed: int) -> int:
@@ -170,10 +198,14 @@ def main(argv=None) -> int:
                     help="find the trace test's witness points on a random chart of projective space (points of "
                          "very large norm are ordinary there)")
     ap.add_argument("--phc", action="store_true", help="record PHCpack's count next to the stored sets (only)")
+    ap.add_argument("--retrace", type=float, default=None, metavar="EPS",
+                    help="the trace test of the stored sets again, the pencil tracked to +-EPS (only)")
     args = ap.parse_args(argv)
     status = 0
     if args.phc:
         return max(record_phc(m, 7 + args.seed) for m in args.m)
+    if args.retrace is not None:
+        return max(retrace(m, args.seed, args.retrace, args.chart) for m in args.m)
     for m in args.m:
         params, X, meta = solve_generic(m, seed=args.seed, no_progress=args.no_progress, extra=args.extra,
                                         chart=args.chart)
