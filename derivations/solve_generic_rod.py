@@ -30,8 +30,9 @@ found in affine coordinates, did not): 12, 26, 20 and 8 solutions; PHCpack 12, 2
 difference of a single point (``detection``) is below the tolerance 1e-8, so the trace alone would not notice a
 missing point that moves that nearly linearly along the pencil; PHCpack's count is the independent check there.
 With the pencil tracked to +-0.5 instead of +-0.1 (``--retrace 0.5``, recorded for m = 2 and 3, the first record
-kept in ``history``): detection / measured trace 7.6 and 47 (0.1 and 2.6 at +-0.1); m = 4 stayed at 0.24-0.35
-(its +-0.1 record kept), m = 5 is 4.6e4 at +-0.1.
+kept in ``history``): detection / measured trace 7.6 and 47 (0.1 and 2.6 at +-0.1); m = 4 stayed at 0.24 in affine
+coordinates and reached 12 with the witness points on a chart (``--retrace 0.5 --chart 20131 --seed 2``, recorded;
+0.35 at +-0.1); m = 5 is 4.6e4 at +-0.1.
 """
 
 from __future__ import annotations
