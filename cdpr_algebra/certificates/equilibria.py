@@ -535,7 +535,7 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
     depend on the frame).  Constants: A_i - c, b'_i - cb, g' - cb, Q d and rho_i^2 enclosed.  ``balls`` (one bool per
     group, default all True): retry the roots of that group that double precision could not certify in ball
     arithmetic."""
-    from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes, certify_complex_roots, overlapping
+    from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes, certify_complex_roots
     from cdpr_algebra.intervals.arithmetic import Interval
 
     groups = [(list(map(int, c)), np.asarray(Z, dtype=complex).reshape(len(Z), 12 + len(c))) for c, Z in groups]
@@ -580,10 +580,9 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
         k0 += len(Zg)
         bg = ComplexRootBoxes(boxes.proven[sl], boxes.lo[sl], boxes.hi[sl], boxes.real[sl], boxes.nonreal[sl],
                               boxes.center[sl], boxes.reason[sl])
-        over = np.zeros(len(Zg), bool)
-        over[bg.proven] = overlapping(bg.lo[bg.proven], bg.hi[bg.proven])
-        out.append((bg, over))
+        out.append((bg, bg.meeting()))
     return out
+
 
 
 def _frame_constants(robot, rows, frame, interval: bool):

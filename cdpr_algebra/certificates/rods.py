@@ -21,15 +21,11 @@ __all__ = ["certify_rod_roots", "rod_scales"]
 
 
 def _enclosed(value):
-    """A :class:`fractions.Fraction` or a double as an Interval enclosing it."""
-    from fractions import Fraction
-
+    """An Interval enclosing a :class:`fractions.Fraction` or a double (a point for a double)."""
     from cdpr_algebra.intervals.arithmetic import Interval, enclose_fraction
 
-    if isinstance(value, Fraction):
-        lo, hi = enclose_fraction(value)
-        return Interval(np.float64(lo), np.float64(hi))
-    return Interval.point(float(value))
+    lo, hi = enclose_fraction(value)
+    return Interval(np.float64(lo), np.float64(hi))
 
 
 def rod_scales(robot, m: int, DD) -> np.ndarray:
@@ -43,7 +39,7 @@ def certify_rod_roots(robot, lengths, cables, s, DD, Z):
     (N x (m + 7), world coordinates (G, u, lam, mu)) of the rod system of the 0-based taut ``cables`` with the exact
     line coordinates ``s`` and ``DD`` (fractions); ``lengths`` all n (None: the robot's)."""
     from cdpr_algebra.intervals.arithmetic import Interval
-    from cdpr_algebra.intervals.complex_krawczyk import certify_complex_roots, overlapping
+    from cdpr_algebra.intervals.complex_krawczyk import certify_complex_roots
 
     rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
     idx = [int(c) for c in cables]
@@ -66,6 +62,4 @@ def certify_rod_roots(robot, lengths, cables, s, DD, Z):
         return evaluate
 
     boxes = certify_complex_roots(system(exact), system(approx), Z, rod_scales(robot, m, DD))
-    over = np.zeros(len(Z), bool)
-    over[boxes.proven] = overlapping(boxes.lo[boxes.proven], boxes.hi[boxes.proven])
-    return boxes, over
+    return boxes, boxes.meeting()

@@ -105,9 +105,11 @@ class FamilyMember:
 @dataclass(frozen=True)
 class Family:
     """The positive-dimensional part of a taut set's solutions as the local dimension test saw it: ``endpoints``
-    endpoints (regular ones the certificates refuse, or singular ones) on positive-dimensional sets (of ``dimensions``), ``undecided`` endpoints where the test could
-    not tell, ``tested`` endpoints tested; the motion at the first one: ``fixed`` the names of the points it leaves
-    fixed ('B1', .., 'G'), ``turns`` (the platform turns, not only translates) and ``tensions_change``."""
+    endpoints (regular ones the certificates refuse, or singular ones) on positive-dimensional sets (of
+    ``dimensions``), ``undecided`` endpoints where the test could not tell, ``tested`` endpoints tested; the motion at
+    the first one: ``fixed`` the names of the points it leaves fixed ('B1', .., 'G'), ``turns`` (the platform turns,
+    not only translates) and ``tensions_change``.  For a taut set solved as a rod (``method`` ROD), one group per
+    root of the rod system and ``certified`` those proven distinct."""
 
     endpoints: int
     dimensions: tuple

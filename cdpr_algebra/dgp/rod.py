@@ -31,7 +31,7 @@ from cdpr_algebra.generated.rod_equations import rod_equations
 from cdpr_algebra.homotopy.results import FAILURES, outcome_counts
 from cdpr_algebra.model.rod_equations import ROD_M, line_coordinates, rod_family, rod_parameters
 from .positive_dimensional import ROD, Family, turning_member, world_residual
-from .taut_system import LazyFamilySystem
+from .taut_system import LazyFamilySystem, QuadraticInParameters
 
 __all__ = ["FastRodSystem", "fast_rod_family", "rod_geometry", "rod_generic_path", "solve_rod_taut_set"]
 
@@ -44,11 +44,12 @@ def rod_generic_path(m: int) -> Path:
     return Path(__file__).resolve().parent.parent / "data" / f"rod_generic_m{m}.json"
 
 
-class FastRodSystem(LazyFamilySystem):
+class FastRodSystem(QuadraticInParameters, LazyFamilySystem):
     """:func:`cdpr_algebra.model.rod_equations.rod_family` (m) evaluated by its generated evaluator
-    (:mod:`cdpr_algebra.generated.rod_equations`) on numpy columns, vectorized over the points; the sympy family
-    (name, hash, mpmath evaluators: the engine's projective and arbitrary-precision retries) is built only when
-    something asks for it."""
+    (:mod:`cdpr_algebra.generated.rod_equations`) on numpy columns, vectorized over the points (every equation has
+    degree <= 2 in the parameters A, rho^2, s, D.D, Q d: the directional derivative by central difference); the sympy
+    family (name, hash, mpmath evaluators: the engine's projective and arbitrary-precision retries) is built only
+    when something asks for it."""
 
     family_builder = staticmethod(rod_family)
     compiled_kernels = None  # numpy tracking, vectorized over the paths (answered here: asking builds the family)
@@ -82,14 +83,6 @@ class FastRodSystem(LazyFamilySystem):
     def evaluate_and_jacobian(self, x, p=None):
         return self._eval(x, p, True)
 
-    def evaluate_directional(self, x, p, dp):
-        """F, dF/dx and the derivative of F along the parameter direction dp: every equation has degree <= 2 in the
-        parameters (A, rho^2, s, D.D, Q d), so the central difference (F(p + dp) - F(p - dp)) / 2 is exact up to
-        rounding."""
-        F, J = self._eval(x, p, True)
-        p, dp = np.asarray(p, dtype=complex), np.asarray(dp, dtype=complex)
-        return F, J, 0.5 * (self._eval(x, p + dp, False)[0] - self._eval(x, p - dp, False)[0])
-
     def evaluate_all(self, x, p=None):
         return self.family.evaluate_all(x, p)
 
@@ -106,9 +99,7 @@ def _generic(m: int):
     if m not in _GENERIC:
         from cdpr_algebra.homotopy.monodromy import load_instance
 
-        p, X, _ = load_instance(rod_generic_path(m))
-        if not np.max(np.abs(fast_rod_family(m).evaluate(X, p))) <= 1e-8 * (1 + np.max(np.abs(X))):
-            raise ValueError(f"{rod_generic_path(m)}: the stored solutions do not solve the rod equations")
+        p, X, _ = load_instance(rod_generic_path(m), fast_rod_family(m), check_hash=False)
         _GENERIC[m] = (p, X)
     return _GENERIC[m]
 
@@ -179,9 +170,7 @@ def solve_rod_taut_set(robot, rho, cables, geometry, seed: int = 0, options=None
     W = _world(np.array([x.x for x in res.solutions]).reshape(-1, m + 7), m, c, L, Rw, robot.load)
     Z = W[~singular]  # regular endpoints: certified
     boxes, over = certify_rod_roots(robot, rho, idx, s, DD, Z)
-    ok = boxes.proven & ~over
-    why = Counter("its box meets another root's box (not proven distinct)" if o else r
-                  for r, good, o in zip(boxes.reason, ok, over) if not good)
+    ok, why = boxes.distinct(over)
     certified = int(ok.sum())
     accounted = failed == 0 and sum(outcomes.values()) == len(_generic(m)[1])
     complete = accounted and certified == len(Z) == outcomes["regular"]
@@ -210,5 +199,5 @@ def solve_rod_taut_set(robot, rho, cables, geometry, seed: int = 0, options=None
                     groups=(1,) * finite, real=positive, members=tuple(members), method=ROD, certified=certified)
     return dict(paths=len(paths), finite=finite, real=int(np.sum(real)), admissible=0, outcomes=outcomes,
                 failures=failures, complete=complete, generic_count=len(_generic(m)[1]), certified=certified,
-                certified_real=int(np.sum(ok & boxes.real)), uncertified=dict(why), family=family,
+                certified_real=int(np.sum(ok & boxes.real)), uncertified=why, family=family,
                 retried=dict(retried))

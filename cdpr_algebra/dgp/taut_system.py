@@ -7,7 +7,7 @@ import numpy as np
 
 from cdpr_algebra.model.taut_equations import taut_family
 
-__all__ = ["LazyFamilySystem", "FastTautSystem", "fast_family"]
+__all__ = ["LazyFamilySystem", "QuadraticInParameters", "FastTautSystem", "fast_family"]
 
 
 class LazyFamilySystem:
@@ -34,7 +34,18 @@ class LazyFamilySystem:
         return getattr(self.family, name)
 
 
-class FastTautSystem(LazyFamilySystem):
+class QuadraticInParameters:
+    """``evaluate_directional`` for a system whose equations all have degree <= 2 in the parameters: the central
+    difference (F(x; p + dp) - F(x; p - dp)) / 2 is then the derivative of F along dp exactly (up to rounding), and
+    cheaper than dF/dp.  For a class that has ``evaluate`` and ``evaluate_and_jacobian``."""
+
+    def evaluate_directional(self, x, p, dp):
+        F, J = self.evaluate_and_jacobian(x, p)
+        p, dp = np.asarray(p, dtype=complex), np.asarray(dp, dtype=complex)
+        return F, J, 0.5 * (self.evaluate(x, p + dp) - self.evaluate(x, p - dp))
+
+
+class FastTautSystem(QuadraticInParameters, LazyFamilySystem):
     """:func:`cdpr_algebra.model.taut_equations.taut_family` (m) with compiled evaluators of F, dF/dx, dF/dp generated
     from it (``derivations/derive_taut_equations.py``; checked against the sympy family's own evaluators in
     tests/test_dgp.py).
@@ -104,17 +115,6 @@ class FastTautSystem(LazyFamilySystem):
 
     def evaluate_all(self, x, p=None):
         return self._eval(x, p, True, True)
-
-    def evaluate_directional(self, x, p, dp):
-        """F, dF/dx and the derivative of F along the parameter direction dp.  Every equation is a polynomial
-        of degree <= 2 in the parameters (A, rho^2, b', g', Q d), so the central difference
-        (F(x; p + dp) - F(x; p - dp)) / 2 is that derivative exactly (up to rounding); cheaper than dF/dp."""
-        F, J, _ = self._eval(x, p, True, False)
-        p = np.asarray(p, dtype=complex)
-        dp = np.asarray(dp, dtype=complex)
-        Fp = self._eval(x, p + dp, False, False)[0]
-        Fm = self._eval(x, p - dp, False, False)[0]
-        return F, J, 0.5 * (Fp - Fm)
 
 
 _FAST: dict = {}

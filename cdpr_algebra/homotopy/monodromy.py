@@ -198,11 +198,12 @@ def save_instance(path, system: PolynomialSystem, parameters, solutions, **meta)
     Path(path).write_text(json.dumps(data, indent=1) + "\n", encoding="utf-8")
 
 
-def load_instance(path, system: PolynomialSystem | None = None):
+def load_instance(path, system: PolynomialSystem | None = None, check_hash: bool = True):
     """Read :func:`save_instance` output. Returns (parameters, solutions, data dict).
 
-    With ``system`` given, the stored hash must match it (ValueError otherwise) and the residuals of
-    the stored solutions are checked.
+    With ``system`` given, the stored hash must match it (ValueError otherwise; not with ``check_hash`` False, for
+    a system whose hash is slow to build, checked elsewhere) and the stored solutions must have its number of
+    unknowns and solve it (residuals checked).
     """
     data = json.loads(Path(path).read_text(encoding="utf-8"))
     if data.get("format") != "cdpr_algebra.homotopy.instance":
@@ -212,9 +213,11 @@ def load_instance(path, system: PolynomialSystem | None = None):
     p = _uc(data["parameters"])
     X = _uc(data["solutions"]).reshape(data["count"], len(data["variables"]))
     if system is not None:
-        if data["system_hash"] != system.hash:
+        if check_hash and data["system_hash"] != system.hash:
             raise ValueError(f"{path}: stored for another system (hash {data['system_hash'][:12]}..., "
                              f"this system {system.hash[:12]}...)")
+        if X.shape[1] != system.n:
+            raise ValueError(f"{path}: stored solutions have {X.shape[1]} unknowns, the system {system.n}")
         F = system.evaluate(X, p)
         if X.size and not np.max(np.abs(F)) <= 1e-8 * (1 + np.max(np.abs(X))):
             raise ValueError(f"{path}: stored solutions do not solve the system (residual {np.max(np.abs(F)):.2e})")

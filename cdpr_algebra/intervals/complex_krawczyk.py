@@ -19,6 +19,7 @@ imaginary part is proven non-real.
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,6 +30,7 @@ from .operators import krawczyk
 __all__ = ["ComplexPair", "realified_jacobian", "ComplexRootBoxes", "certify_complex_roots", "overlapping"]
 
 EPS = 2.0 ** -52
+NOT_DISTINCT = "its box meets another root's box (not proven distinct)"
 START_RTOL = 1e-11  # first box: +/- 1e-11 of each unknown's scale (one test for most roots), then inflated
 
 
@@ -169,6 +171,19 @@ class ComplexRootBoxes:
     @property
     def count(self) -> int:
         return int(np.sum(self.proven))
+
+    def meeting(self) -> np.ndarray:
+        """(N,) bool: the proven boxes that meet another proven box (:func:`overlapping`; those roots are not proven
+        distinct)."""
+        out = np.zeros(len(self.proven), bool)
+        out[self.proven] = overlapping(self.lo[self.proven], self.hi[self.proven])
+        return out
+
+    def distinct(self, over) -> tuple:
+        """(ok, why): ok (N,) the roots proven unique in boxes that meet no other proven box (``over``:
+        :meth:`meeting`), why {reason: count} for the others."""
+        ok = self.proven & ~over
+        return ok, dict(Counter(NOT_DISTINCT if o else r for r, good, o in zip(self.reason, ok, over) if not good))
 
 
 def _krawczyk_round(system, n, part, Y, r, rmax, lo, hi, proven, reason, max_rel_width, kernel=None):
