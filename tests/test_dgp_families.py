@@ -1,9 +1,10 @@
 """Issue 15: taut sets whose equilibria form continuous families are named and their real families listed, not left
 as unexplained uncertified endpoints, when the 6-DOF homotopy tracks them (``rods=False`` here: the DGP solves
 exactly collinear taut sets of 2-5 cables as a rod, tests/test_dgp_rod.py; this route remains for data collinear
-only up to rounding, m = 6, and as that test's cross-check).  Robot: ``examples/symmetric_4cables.toml`` with its centre of mass moved
-into the platform's plane, at the platform's centre (a flat plate with its attachment points at the corners): with
-the cables on a diagonal taut, B1, B3 and G are collinear and the platform turns freely about that line.
+only up to rounding, m = 6, and as that test's cross-check).  Robot: ``examples/symmetric_4cables.toml`` with its
+centre of mass moved into the platform's plane, at the platform's centre (a flat plate with its attachment points at
+the corners): with the cables on a diagonal taut, B1, B3 and G are collinear and the platform turns freely about
+that line.
 
 Independent check of the verdict: the endpoints, turned about the line through B1 and B3 by any (complex) angle,
 still solve the taut equations, tensions unchanged (the family the test reports is there), and the same taut set
@@ -33,6 +34,17 @@ def _turned(p, R, axis_point, axis, theta):
     K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
     Q = np.eye(3) + np.sin(theta) * K + (1 - np.cos(theta)) * K @ K  # Rodrigues, valid for complex theta
     return axis_point + Q @ (p - axis_point), Q @ R
+
+
+def _poses_across_arcs(robot, cables, f, k):
+    """(theta, (lo, hi), p, R, x) at k turning angles across each arc (lo, hi) of the listed family f, x the taut
+    root (p, u, v, w, lam) there."""
+    lam = f.tensions[list(cables)] / np.asarray(robot.lengths)[list(cables)]
+    B = f.position + f.rotation @ robot.platform[cables[0]]
+    for lo, hi in f.arcs:
+        for theta in np.linspace(lo, hi, k):
+            p, R = _turned(f.position, f.rotation, B, f.axis, theta)
+            yield theta, (lo, hi), p, R, encode(p, R, lam)
 
 
 def _residual(robot, cables, x):
@@ -99,19 +111,14 @@ def test_the_real_families_are_listed_with_their_feasible_arcs():
         for f in fam.members:
             assert f.taut == tuple(c + 1 for c in cables) and np.all(f.tensions[list(cables)] > 0)
             assert np.all(f.tensions[list(slack)] == 0)
-            lam = f.tensions[list(cables)] / rho[list(cables)]
-            for lo, hi in f.arcs:
-                for theta in np.linspace(lo, hi, 5):
-                    B1 = f.position + f.rotation @ flat.platform[cables[0]]
-                    p, R = _turned(f.position, f.rotation, B1, f.axis, theta)
-                    x = encode(p, R, lam)
-                    assert _residual(flat, cables, x) <= 1e-10
-                    d = np.linalg.norm(p + flat.platform[list(slack)] @ R.T - flat.base[list(slack)], axis=1)
-                    assert np.all(d <= rho[list(slack)] * (1 + 1e-8))
-                    if lo < theta < hi:
-                        continue
-                    if hi - lo < 2 * np.pi - 1e-9:  # an end of an arc: some slack cable exactly at its length
-                        assert np.min(np.abs(d - rho[list(slack)])) <= 1e-8
+            for theta, (lo, hi), p, R, x in _poses_across_arcs(flat, cables, f, 5):
+                assert _residual(flat, cables, x) <= 1e-10
+                d = np.linalg.norm(p + flat.platform[list(slack)] @ R.T - flat.base[list(slack)], axis=1)
+                assert np.all(d <= rho[list(slack)] * (1 + 1e-8))
+                if lo < theta < hi:
+                    continue
+                if hi - lo < 2 * np.pi - 1e-9:  # an end of an arc: some slack cable exactly at its length
+                    assert np.min(np.abs(d - rho[list(slack)])) <= 1e-8
         assert "family of equilibria" in fam.members[0].describe(fam.fixed)
     # the stable one hangs: of the two real families of {1, 3} with positive tensions, the lower one
     sub, _, Z = _solve_taut_set(flat, rho, (0, 2), rods=False)
@@ -206,7 +213,8 @@ def test_random_rods_have_turning_families_of_two_cables():
         rod = random_rod(seed)
         lengths = np.asarray(rod.lengths)
         for cables in ((0, 1), (0, 2), (1, 2)):
-            sub, _, Z = _solve_taut_set(rod, lengths, cables, exclude=False, rods=False)  # tracked even with no admissible
+            # tracked even with no admissible equilibrium
+            sub, _, Z = _solve_taut_set(rod, lengths, cables, exclude=False, rods=False)
             if sub.skipped:  # pruned: the distance conditions prove the set empty
                 assert "cannot" in sub.skipped and sub.complete
                 continue
@@ -218,10 +226,6 @@ def test_random_rods_have_turning_families_of_two_cables():
             for f in fam.members:
                 listed += 1
                 assert f.certified
-                lam = f.tensions[list(cables)] / lengths[list(cables)]
-                for lo, hi in f.arcs:
-                    for theta in np.linspace(lo, hi, 3):
-                        B = f.position + f.rotation @ rod.platform[cables[0]]
-                        p, R = _turned(f.position, f.rotation, B, f.axis, theta)
-                        assert _residual(rod, cables, encode(p, R, lam)) <= 1e-10
+                for *_, x in _poses_across_arcs(rod, cables, f, 3):
+                    assert _residual(rod, cables, x) <= 1e-10
     assert listed >= 2 and tracked >= 4
