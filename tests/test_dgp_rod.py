@@ -17,8 +17,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from cdpr_algebra.certificates.families import collinear_exactly
 from cdpr_algebra.dgp.rod import rod_generic_path, rod_geometry
-from cdpr_algebra.dgp.solve import DGPResult, _solve_taut_set, _with_endpoint_certificates, dgp_table, summary_line
+from cdpr_algebra.comparison.compare import compare_taut_set
+from cdpr_algebra.dgp.solve import (DGPResult, _solve_taut_set, _with_endpoint_certificates, dgp_table,
+                                    excluded_subproblem, summary_line)
 from cdpr_algebra.model.robot import load_robot
 from cdpr_algebra.model.rod_equations import ROD_M, line_coordinates
 from test_dgp_families import _poses_across_arcs, _residual, random_rod
@@ -73,8 +76,13 @@ def test_line_coordinates_are_exact():
     assert s == [1, (Fraction(0.25) - Fraction(0.1)) / D[0], (Fraction(0.5) - Fraction(0.1)) / D[0]]
     flat = _flat()
     assert rod_geometry(flat, (0, 2)) is not None and rod_geometry(flat, (0, 1)) is None
-    # collinear on paper, not in doubles: the 6-DOF homotopy, not the rod
-    assert rod_geometry(replace(flat, com=np.array([0.1, 0.06, 0.0])), (0, 2)) is None
+    assert rod_geometry(flat, (0, 2))[2] == "binary"
+    # collinear on paper (G at 0.4 of the diagonal), not in doubles: the rod of the robot read in decimal
+    assert not collinear_exactly([flat.platform[0], flat.platform[2], [0.1, 0.06, 0.0]])
+    assert rod_geometry(replace(flat, com=np.array([0.1, 0.06, 0.0])), (0, 2))[2] == "decimal"
+    assert line_coordinates([[0.25, 0.15, 0]], [0.1, 0.06, 0], "decimal")[1] == [1]  # G + s D is B: s = 1 exactly
+    # off the line in every reading: the 6-DOF homotopy
+    assert rod_geometry(replace(flat, com=np.array([0.1, 0.0600001, 0.0])), (0, 2)) is None
     assert rod_geometry(load_robot(ROOT / "examples" / "symmetric_4cables.toml"), (0, 2)) is None
 
 
@@ -105,6 +113,42 @@ def test_a_flat_plates_diagonal_is_solved_as_a_rod_and_complete():
     assert pd["test"] == "rod system" and pd["certified"] == sub.certified and out["families"] == pd["members"]
     assert dgp_table(result, flat.n).count("a family of equilibria turning about the line through B1, B3, G") == 2
     assert "2 admissible families of equilibria" in summary_line(result)
+
+
+def test_a_line_collinear_only_in_decimal_is_the_robot_read_in_decimal():
+    """The flat plate with its platform frame moved by (0.1, 0.2, 0.3), written in decimal: B1, B3 and G stay on one
+    line on paper, not in doubles (B2, B4 and G likewise).  Solved as the robot read in decimal, each diagonal is
+    complete, and its families are those of the plate in its first frame, exactly collinear in doubles: the same
+    number, the same real ones, the taut anchors' world positions and the tensions of the listed ones equal to 1e-8,
+    every listed pose certified in the decimal reading and solving the doubles' statics."""
+    flat = _flat()
+    moved = replace(flat, platform=np.array([[-0.15, 0.05, 0.3], [0.35, 0.05, 0.3], [0.35, 0.35, 0.3],
+                                             [-0.15, 0.35, 0.3]]), com=np.array([0.1, 0.2, 0.3]))
+    for cables in ((0, 2), (1, 3)):
+        points = [moved.platform[i] for i in cables] + [moved.com]
+        assert not collinear_exactly(points) and collinear_exactly(points, "decimal")
+        sub, ref = _solved(moved, cables), _solved(flat, cables)
+        assert sub.complete and sub.certified == sub.outcomes["regular"] == sub.generic_count
+        fam, want = sub.family, ref.family
+        assert fam.reading == "decimal" and want.reading == "binary" and "read in decimal" in fam.describe()
+        assert len(fam.groups) == len(want.groups) and fam.real == want.real
+        assert len(fam.members) == len(want.members) >= 1
+        for f in fam.members:
+            v = _invariants(f, moved, cables)
+            assert min(np.max(np.abs(v - _invariants(g, flat, cables))) for g in want.members) <= 1e-8
+            assert f.certified and f.certificate.extra["reading"] == "decimal" and f.residual <= 1e-12
+            for *_, x in _poses_across_arcs(moved, cables, f, 4):
+                assert _residual(moved, cables, x) <= 1e-10
+    result = DGPResult((), (sub,), 0.0, 0, None)
+    pd = result.to_dict()["subproblems"][0]["positive_dimensional"]
+    assert pd["test"] == "rod system" and pd["reading"] == "decimal"
+    assert dgp_table(result, moved.n).count("(rod system, the robot read in decimal)") == len(fam.members)
+    # the interval filter and search read the doubles, a robot off the line: they neither exclude the set (its
+    # proof that {2, 4} holds no admissible equilibrium, true of the doubles, hid the decimal robot's family) nor
+    # agree with the families (the interval search of {2, 4} is complete with no solution: not an agreement)
+    assert excluded_subproblem(moved, moved.lengths, (1, 3)) is not None
+    c = compare_taut_set(moved, moved.lengths, (1, 3))
+    assert c.agree is None and "as a rod" in c.compared and "decimal" in c.compared
 
 
 def test_the_beam_is_complete():

@@ -717,9 +717,11 @@ class Model:
 def _frame(pts):
     a, b, c = pts
     e1 = b - a
-    e1 = e1 / np.linalg.norm(e1)
     e3 = np.cross(b - a, c - a)
-    e3 = e3 / np.linalg.norm(e3)
+    n1, n3 = np.linalg.norm(e1), np.linalg.norm(e3)
+    if not (n1 > 0 and n3 > 0):  # e.g. the centre of an undecided box: no pose (callers catch it)
+        raise ValueError("no frame: the three points are collinear")
+    e1, e3 = e1 / n1, e3 / n3
     return np.stack([e1, np.cross(e3, e1), e3], axis=1)
 
 

@@ -11,10 +11,11 @@ Why a root of the sub-formulation is an equilibrium: given force balance, the mo
 equal the moment about G, sum (B_k - G) x F_k, and each B_k - G is parallel to the line's direction e(x) at that
 pose, so the moment is orthogonal to e(x).  It is also orthogonal to e1 and e2, so it is zero whenever e(x) is
 not in span(e1, e2) -- true in the certified box, where e(x) is within its width of a.  The argument needs the
-robot's anchors and centre of mass exactly collinear, which is checked in exact rational arithmetic on the
-doubles the robot holds (:func:`collinear_exactly`): decimal data that are collinear on paper, such as a centre of
-mass at 0.4 of a diagonal, are seldom collinear once rounded, and then the family is one of the decimal robot, not
-of the doubles, and nothing is certified.
+robot's anchors and centre of mass exactly collinear, which is checked in exact rational arithmetic
+(:func:`collinear_exactly`) on the doubles the robot holds or, with ``reading`` DECIMAL, on the decimals that print
+them: decimal data collinear on paper, such as a centre of mass at 0.4 of a diagonal, are seldom collinear once
+rounded, and their family is one of the robot read in decimal (its taut anchors and centre of mass as those
+decimals, enclosed exactly; the rest as doubles), not of the doubles.
 
 The certificate proves the reported pose (existence and uniqueness in its box under the gauge, tension signs,
 slack cables), not the whole arc; its H_r class is undecided (the turn is a null direction).
@@ -22,20 +23,21 @@ slack cables), not the whole arc; its H_r class is undecided (the turn is a null
 
 from __future__ import annotations
 
-from fractions import Fraction
-
 import numpy as np
 
 from .equilibria import (BOX_RTOL, FLINT, Certificate, _consequences, _failed, _gauged_system, _krawczyk,
                          _robot_data, _scales, _turning_gauge)
+from cdpr_algebra.model.rod_equations import BINARY, exact_rational
 from cdpr_algebra.model.taut_equations import encode, to_cable_frame
 
 __all__ = ["certify_turning_equilibrium", "collinear_exactly"]
 
 
-def collinear_exactly(points) -> bool:
-    """Whether the 3-vectors ``points`` (doubles) lie on one line, in exact rational arithmetic."""
-    P = [[Fraction(float(v)) for v in p] for p in points]
+def collinear_exactly(points, reading: str = BINARY) -> bool:
+    """Whether the 3-vectors ``points`` (doubles) lie on one line, in exact rational arithmetic on their binary values
+    or, with ``reading`` DECIMAL, on the decimals that print them
+    (:func:`cdpr_algebra.model.rod_equations.exact_rational`)."""
+    P = [[exact_rational(v, reading) for v in p] for p in points]
     o = P[0]
     far = max(P, key=lambda q: sum((q[k] - o[k]) ** 2 for k in range(3)))
     d = [far[k] - o[k] for k in range(3)]
@@ -49,9 +51,10 @@ def collinear_exactly(points) -> bool:
 
 
 def certify_turning_equilibrium(robot, lengths, cables, position, rotation, tensions,
-                                box_rtol: float = BOX_RTOL) -> Certificate:
+                                box_rtol: float = BOX_RTOL, reading: str = BINARY) -> Certificate:
     """Certificate of the reported pose of a family turning about the line of the taut anchors (0-based ``cables``,
-    m >= 2) and G: ``position``, ``rotation``, the m taut ``tensions``; ``lengths`` all n (None: the robot's)."""
+    m >= 2) and G: ``position``, ``rotation``, the m taut ``tensions``; ``lengths`` all n (None: the robot's);
+    ``reading``: the taut anchors and G as the robot's doubles or as the decimals that print them (module doc)."""
     from flint import ctx
 
     rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
@@ -60,9 +63,9 @@ def certify_turning_equilibrium(robot, lengths, cables, position, rotation, tens
     tensions = np.asarray(tensions, dtype=float).ravel()
     if m < 2 or tensions.shape != (m,):
         raise ValueError(f"expected 2..6 taut cables and one tension each, got {m} cables and {tensions.shape}")
-    if not collinear_exactly([robot.platform[i] for i in taut] + [robot.com]):
-        return _failed("dgp", robot.n, "the taut anchors and the centre of mass are not exactly collinear in the "
-                                       "robot's binary data: no exact family to certify a point of", None, taut)
+    if not collinear_exactly([robot.platform[i] for i in taut] + [robot.com], reading):
+        return _failed("dgp", robot.n, f"the taut anchors and the centre of mass are not exactly collinear in the "
+                                       f"robot's {reading} data: no exact family to certify a point of", None, taut)
     R0 = np.asarray(rotation, dtype=float)
     arms = robot.platform[taut] - robot.platform[taut[0]]
     arm = arms[int(np.argmax(np.linalg.norm(arms, axis=1)))]
@@ -72,6 +75,10 @@ def certify_turning_equilibrium(robot, lengths, cables, position, rotation, tens
 
     def make_system(num):
         A, b, g, f = _robot_data(robot, taut, num, frame=frame)
+        if reading != BINARY:  # the line's points as the decimals that print them (num of a string: arb encloses it)
+            b, g = ([[num(repr(float(v))) - num(float(frame[1][k])) for k, v in enumerate(point)]
+                     for point in robot.platform[taut]],
+                    [num(repr(float(v))) - num(float(frame[1][k])) for k, v in enumerate(robot.com)])
         return _gauged_system(A, b, g, f, [num(float(rho[i])) ** 2 for i in taut], *gauge)
 
     scale = _scales(robot, m, range(12 + m), robot.cable_scale, x0)
@@ -83,5 +90,6 @@ def certify_turning_equilibrium(robot, lengths, cables, position, rotation, tens
         R = [[X[3 + k], X[6 + k], X[9 + k]] for k in range(3)]
         return _consequences("dgp", robot, taut, rho, X[0:3], R, X[12:], kr, kr.relative_width(scale),
                              robot.cable_scale, extra={"family": "turning about the line of the taut anchors and G "
-                                                                 "(gauge-fixed point; the arc is not certified)"},
+                                                                 "(gauge-fixed point; the arc is not certified)",
+                                                       "reading": reading},
                              frame=frame)

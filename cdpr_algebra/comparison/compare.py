@@ -20,6 +20,9 @@ where both sides stand behind their answer):
   reasons, e.g. non-isolated equilibria; the homotopy's missing generic set; a homotopy pruning that interval
   arithmetic could not confirm), or left it incomplete (homotopy failed paths, or a homotopy subproblem flagged
   ``complete = False``; undecided interval boxes) without a definite difference.  It is never counted as agreement.
+  A taut set the homotopy solved as a rod (:mod:`cdpr_algebra.dgp.rod`: families turning about a line) is not
+  compared either: the interval search lists isolated equilibria, and where the line holds only in the decimal
+  reading of the robot's numbers it searches the doubles, a robot off the line.
 
 **Pruning as a proof.**  The homotopy DGP skips a taut set when two cables cannot reach each other
 (|A_i A_j| > rho_i + rho_j + |b_i' b_j'|: B_i lies within rho_i of A_i, B_j within rho_j of A_j, and |B_i B_j| =
@@ -47,6 +50,7 @@ import numpy as np
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets, solve_each_taut_set
 from cdpr_algebra.bp.results import BPOptions
 from cdpr_algebra.bp.search import solve_taut_set_interval
+from cdpr_algebra.dgp.positive_dimensional import ROD
 from cdpr_algebra.report.jsonable import jsonable
 
 __all__ = ["SubproblemComparison", "CrosscheckResult", "compare_taut_set", "crosscheck", "crosscheck_table",
@@ -270,6 +274,12 @@ def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed:
     h_only, i_only = _match(robot, taut1, list(hsols), list(isub.solutions))
     hwhy = _incompleteness(hsub) if hflag is False else None
     agree, compared = _outcome(hskip, hcount, hfailed, hflag, pruned, isub, h_only, i_only, hwhy)
+    family = getattr(hsub, "family", None)
+    if family is not None and family.method == ROD:  # families on a line: nothing isolated to compare
+        agree, compared = None, (f"not compared: the homotopy solved the taut set as a rod (families of equilibria "
+                                 f"turning about a line, {family.reading} reading of the robot's data); the interval "
+                                 f"search lists isolated equilibria of the robot's doubles"
+                                 + (f"; interval search skipped ({isub.skipped})" if isub.skipped else ""))
     return SubproblemComparison(taut1, hcount, isub.admissible, isub.n_undecided, agree, h_only, i_only,
                                 tuple(isub.undecided), th, isub.seconds, isub.boxes, hskip, isub.skipped, compared,
                                 hfailed)

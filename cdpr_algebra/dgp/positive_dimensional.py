@@ -25,9 +25,10 @@ certificate under a gauge that fixes the turning angle (:func:`cdpr_algebra.cert
 certify_turning_equilibrium`: the point, not the arc).  The subproblem stays incomplete: the list of families rests
 on the numerical test, and on every family having drawn a path.
 
-Taut sets of 2 .. 5 cables whose anchors and centre of mass are exactly collinear do not come here: the DGP solves
-them as a rod (:mod:`.rod`, complete and certified), and builds their listed families with :func:`turning_member`.
-What comes here are the other positive-dimensional sets, and families of data collinear only up to rounding.
+Taut sets of 2 .. 5 cables whose anchors and centre of mass are exactly collinear (in the robot's doubles, or in the
+decimals that print them) do not come here: the DGP solves them as a rod (:mod:`.rod`, complete and certified), and
+builds their listed families with :func:`turning_member`.  What comes here are the other positive-dimensional
+sets, and families of data collinear only up to rounding in any reading.
 """
 
 from __future__ import annotations
@@ -123,10 +124,14 @@ class Family:
     members: tuple = ()  # FamilyMember: the real families with positive tensions and a feasible arc
     method: str = LOCAL_DIMENSION  # or ROD: the families are the roots of the rod system (dgp.rod)
     certified: int | None = None  # ROD: roots of the rod system proven distinct (whole families, real or complex)
+    reading: str = "binary"  # ROD: the line's points collinear in the robot's doubles, or "decimal" (dgp.rod)
 
     def describe(self) -> str:
         if self.method == ROD:
-            return (f"the taut anchors and the centre of mass lie on one line (exactly, in the robot's binary data): "
+            where = ("exactly, in the robot's binary data" if self.reading == "binary" else
+                     "exactly in the decimals that print the robot's data, not in its doubles, off the line by "
+                     "rounding: the robot read in decimal is solved")
+            return (f"the taut anchors and the centre of mass lie on one line ({where}): "
                     f"every equilibrium turns freely about it; solved as a rod (the line's own equations, dgp.rod): "
                     f"{len(self.groups)} families ({self.certified} proven distinct roots), {self.real} real with "
                     f"positive tensions, {len(self.members)} of them with turning angles at which the other cables "
@@ -145,6 +150,7 @@ class Family:
         return {"endpoints": self.endpoints, "dimensions": list(self.dimensions), "undecided": self.undecided,
                 "tested": self.tested, "fixed_points": list(self.fixed), "turns": self.turns,
                 "tensions_change": self.tensions_change, "test": self.method, "certified": self.certified,
+                "reading": self.reading if self.method == ROD else None,
                 "families": len(self.groups), "endpoints_per_family": list(self.groups), "real_positive": self.real,
                 "members": [f.to_dict() for f in self.members]}
 
@@ -259,13 +265,13 @@ def _turning_members(robot, rho, cables, W, family, tension_tol, residual) -> Fa
     return replace(family, groups=tuple(len(g) for g in groups), real=real, members=tuple(members))
 
 
-def turning_member(robot, rho, idx, B, tau, residual) -> FamilyMember | None:
+def turning_member(robot, rho, idx, B, tau, residual, reading: str = "binary") -> FamilyMember | None:
     """The :class:`FamilyMember` of the real family of the 0-based taut cables ``idx`` whose taut anchors are at the
     world points ``B`` (m x 3) with the positive ``tau`` (m): R0 takes the platform's anchor line to the world's,
     the turning angles at which the other cables stay slack (:func:`.one_cable.slack_arcs`), the pose in the middle
     of the largest arc with its residual (``residual(x)`` of a world root (p, u, v, w, lam)), H_r class and
-    certificate (:func:`cdpr_algebra.certificates.families.certify_turning_equilibrium`); None without a feasible
-    arc."""
+    certificate (:func:`cdpr_algebra.certificates.families.certify_turning_equilibrium`, in the robot's ``reading``);
+    None without a feasible arc."""
     from cdpr_algebra.certificates.families import certify_turning_equilibrium
 
     far = int(np.argmax(np.linalg.norm(B - B[0], axis=1)))
@@ -283,4 +289,4 @@ def turning_member(robot, rho, idx, B, tau, residual) -> FamilyMember | None:
                             robot.load, robot.size)
     return FamilyMember(tuple(i + 1 for i in idx), pt, Rt, tensions, axis, relative,
                         residual(encode(pt, Rt, tau / rho[idx])), cls,
-                        certify_turning_equilibrium(robot, rho, idx, pt, Rt, tau))
+                        certify_turning_equilibrium(robot, rho, idx, pt, Rt, tau, reading=reading))

@@ -14,9 +14,14 @@ up to the generic count and every regular endpoint is certified: then the famili
 with positive tensions is rebuilt as a 6-DOF pose turning about the line, with the turning angles at which the other
 cables stay slack (:func:`.positive_dimensional.turning_member`).
 
-Collinearity is decided in exact rational arithmetic on the robot's doubles
-(:func:`cdpr_algebra.certificates.families.collinear_exactly`): data collinear on paper but not once rounded are
-solved by the 6-DOF homotopy (their families are then isolated points of a nearby system). m = 1 is analytic
+Collinearity is decided in exact rational arithmetic (:func:`cdpr_algebra.certificates.families.collinear_exactly`)
+on the robot's doubles or, failing that, on the decimals that print them (Python's repr, the numbers of a robot
+file): data collinear on paper but not once rounded (a centre of mass at 0.4 of a diagonal) are solved as the robot
+read in decimal -- its taut anchors and centre of mass as those decimals, exactly collinear -- and say so
+(``Family.reading``). The doubles themselves are off the line by rounding; their 6-DOF system has, near each family,
+isolated roots that are artefacts of that rounding, ill-conditioned past what double precision resolves (measured,
+twenty-sixth session: the flat plate with G at 0.4 of its diagonal, 21 of 24 paths singular, 3 regular endpoints
+refused by the certificates, no real family found, the subproblem incomplete). m = 1 is analytic
 (:mod:`.one_cable`); m >= 6 anchors on a line are over-determined by their lengths and stay with the 6-DOF homotopy.
 """
 
@@ -29,7 +34,7 @@ import numpy as np
 
 from cdpr_algebra.generated.rod_equations import rod_equations
 from cdpr_algebra.homotopy.results import FAILURES, outcome_counts
-from cdpr_algebra.model.rod_equations import ROD_M, line_coordinates, rod_family, rod_parameters
+from cdpr_algebra.model.rod_equations import BINARY, DECIMAL, ROD_M, line_coordinates, rod_family, rod_parameters
 from .positive_dimensional import ROD, Family, turning_member, world_residual
 from .taut_system import LazyFamilySystem, QuadraticInParameters
 
@@ -105,18 +110,21 @@ def _generic(m: int):
 
 
 def rod_geometry(robot, cables):
-    """(s, D.D) as fractions (:func:`cdpr_algebra.model.rod_equations.line_coordinates`) when the 0-based taut
-    ``cables`` (2 .. 5 of them) have platform anchors exactly collinear with the centre of mass and a stored generic
-    rod set, else None."""
+    """(s, D.D, reading) with s, D.D fractions (:func:`cdpr_algebra.model.rod_equations.line_coordinates`) when the
+    0-based taut ``cables`` (2 .. 5 of them) have platform anchors collinear with the centre of mass, exactly in the
+    robot's doubles (reading BINARY) or else in the decimals that print them (DECIMAL), and a stored generic rod set;
+    else None."""
     from cdpr_algebra.certificates.families import collinear_exactly
 
     idx = list(cables)
     if len(idx) not in ROD_M or not rod_generic_path(len(idx)).exists():
         return None
-    if not collinear_exactly([robot.platform[i] for i in idx] + [robot.com]):
-        return None
-    line = line_coordinates(robot.platform[idx], robot.com)
-    return None if line is None else line[1:]
+    points = [robot.platform[i] for i in idx] + [robot.com]
+    for reading in (BINARY, DECIMAL):
+        if collinear_exactly(points, reading):
+            line = line_coordinates(robot.platform[idx], robot.com, reading)
+            return None if line is None else (*line[1:], reading)
+    return None
 
 
 def _normalized(robot, rho, idx, s, DD):
@@ -150,7 +158,7 @@ def solve_rod_taut_set(robot, rho, cables, geometry, seed: int = 0, options=None
     certified_real, uncertified, family, retried) with ``geometry`` = :func:`rod_geometry`."""
     from cdpr_algebra.certificates.rods import certify_rod_roots
 
-    s, DD = geometry
+    s, DD, reading = geometry
     idx = list(cables)
     m = len(idx)
     rho = np.asarray(rho, dtype=float)
@@ -191,12 +199,13 @@ def solve_rod_taut_set(robot, rho, cables, geometry, seed: int = 0, options=None
         if np.any(tau <= tension_tol):
             continue
         positive += 1
-        member = turning_member(robot, rho, idx, G + sf[:, None] * u, tau, residual)
+        member = turning_member(robot, rho, idx, G + sf[:, None] * u, tau, residual, reading)
         if member is not None:
             members.append(member)
     finite = len(W)
     family = Family(len(W), (1,), 0, 0, tuple(f"B{i + 1}" for i in idx) + ("G",), True, False,
-                    groups=(1,) * finite, real=positive, members=tuple(members), method=ROD, certified=certified)
+                    groups=(1,) * finite, real=positive, members=tuple(members), method=ROD, certified=certified,
+                    reading=reading)
     return dict(paths=len(paths), finite=finite, real=int(np.sum(real)), admissible=0, outcomes=outcomes,
                 failures=failures, complete=complete, generic_count=len(_generic(m)[1]), certified=certified,
                 certified_real=int(np.sum(ok & boxes.real)), uncertified=why, family=family,

@@ -24,9 +24,11 @@ import numpy as np
 
 from cdpr_algebra.homotopy.systems import PolynomialSystem
 
-__all__ = ["ROD_M", "rod_family", "rod_parameters", "line_coordinates"]
+__all__ = ["ROD_M", "rod_family", "rod_parameters", "line_coordinates", "exact_rational", "BINARY", "DECIMAL"]
 
 ROD_M = (2, 3, 4, 5)
+BINARY = "binary"  # the robot's doubles read exactly
+DECIMAL = "decimal"  # each double read as the shortest decimal that prints it (repr): the numbers of a robot file
 _FAMILIES: dict[int, PolynomialSystem] = {}
 
 
@@ -58,14 +60,22 @@ def rod_family(m: int) -> PolynomialSystem:
     return fam
 
 
-def line_coordinates(platform_points, com):
-    """(D, s, D.D) of :func:`rod_family` for the platform points (k x 3) and centre of mass ``com`` (doubles, exactly
-    collinear): D = b_far - g with b_far the point farthest from g, s_i = (b_i - g).D / D.D, all as exact
-    :class:`fractions.Fraction` (D a tuple); None when every point is at g."""
+def exact_rational(value, reading: str = BINARY):
+    """The double ``value`` as an exact :class:`fractions.Fraction`: its binary value (``BINARY``), or the shortest
+    decimal that prints it (``DECIMAL``, Python's repr: 0.1 for the double nearest 1/10)."""
     from fractions import Fraction
 
-    g = [Fraction(float(v)) for v in com]
-    b = [[Fraction(float(v)) - g[k] for k, v in enumerate(p)] for p in platform_points]
+    if reading not in (BINARY, DECIMAL):
+        raise ValueError(f"reading must be {BINARY!r} or {DECIMAL!r}, not {reading!r}")
+    return Fraction(float(value)) if reading == BINARY else Fraction(repr(float(value)))
+
+
+def line_coordinates(platform_points, com, reading: str = BINARY):
+    """(D, s, D.D) of :func:`rod_family` for the platform points (k x 3) and centre of mass ``com`` (doubles, exactly
+    collinear in the given ``reading``, :func:`exact_rational`): D = b_far - g with b_far the point farthest from g,
+    s_i = (b_i - g).D / D.D, all as exact :class:`fractions.Fraction` (D a tuple); None when every point is at g."""
+    g = [exact_rational(v, reading) for v in com]
+    b = [[exact_rational(v, reading) - g[k] for k, v in enumerate(p)] for p in platform_points]
     norms = [sum(c * c for c in v) for v in b]
     far = max(range(len(b)), key=lambda k: norms[k])
     if norms[far] == 0:
