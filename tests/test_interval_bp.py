@@ -655,3 +655,27 @@ def test_undecided_boxes_are_all_counted_and_only_some_kept(monkeypatch):
     assert not capped.complete and capped.status == "undecided"
     d = capped.to_dict()
     assert d["undecided_count"] == full.n_undecided and len(d["undecided"]) == 3
+
+
+def test_collinear_taut_anchors_with_the_centre_of_mass_off_their_line():
+    """A beam hung from 4 cables with its load 0.25 below the anchors' line (examples/beam_4cables.toml, G moved):
+    the turn about the line is fixed by gravity, so the equilibria are isolated, and the interval model takes G as
+    its third reference point (the anchors alone span no triangle; it skipped every such set before).  The search
+    of {1, 2, 3, 4} is complete and its 6 proven admissible solutions are the 6 certified equilibria the homotopy
+    finds there; with G on the line (the shipped beam) the set is skipped, the platform turning freely."""
+    from dataclasses import replace
+
+    from cdpr_algebra.dgp.solve import solve_taut_set
+
+    beam = load_robot(ROOT / "examples" / "beam_4cables.toml")
+    low = replace(beam, com=np.array([0.0, 0.0, -0.25]))
+    cables = (0, 1, 2, 3)
+    isub = solve_taut_set_interval(low, low.lengths, cables)
+    assert isub.skipped is None and isub.complete and isub.admissible == 6
+    assert "G.x" in build_model(low, low.lengths, cables).variables
+    _, sols = solve_taut_set(low, low.lengths, cables)
+    assert len(sols) == 6 and all(s.certified for s in sols)
+    for s in isub.solutions:
+        (h,) = [h for h in sols if np.max(np.abs(h.position - s.position)) <= 1e-8 * low.size]
+        assert np.max(np.abs(h.rotation - s.rotation)) <= 1e-8 and np.allclose(h.tensions, s.tensions, atol=1e-8)
+    assert "turns freely" in solve_taut_set_interval(beam, beam.lengths, cables).skipped

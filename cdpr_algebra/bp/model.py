@@ -201,8 +201,14 @@ class Model:
                 a2 = _fdot(nrm, nrm)
                 if a2 > 0 and (best is None or a2 > best):
                     best, refs = a2, list(tri)
+            if refs is None:  # collinear taut anchors: G off their line is the third reference point, as for m = 2
+                for pair in itertools.combinations(taut, 2):
+                    nrm = _fcross(_fsub(P[pair[1]], P[pair[0]]), _fsub(P[self.G_id], P[pair[0]]))
+                    a2 = _fdot(nrm, nrm)
+                    if a2 > 0 and (best is None or a2 > best):
+                        best, refs = a2, [*pair, self.G_id]
             if refs is None:
-                raise SkipSubproblem("the taut anchors are collinear: the platform turns freely about their line")
+                raise SkipSubproblem("the taut anchors and G are collinear: the platform turns freely about their line")
             nrm = _fcross(_fsub(P[refs[1]], P[refs[0]]), _fsub(P[refs[2]], P[refs[0]]))
             off = [k for k in taut if _fdot(nrm, _fsub(P[k], P[refs[0]])) != 0]
             if off:
