@@ -149,6 +149,17 @@ def test_a_line_collinear_only_in_decimal_is_the_robot_read_in_decimal():
     assert excluded_subproblem(moved, moved.lengths, (1, 3)) is not None
     c = compare_taut_set(moved, moved.lengths, (1, 3))
     assert c.agree is None and "as a rod" in c.compared and "decimal" in c.compared
+    # four cables on a line: the beam with its frame turned (x along (0.6, 0.8, 0)) and moved by (0.1, 0.7, 0.3)
+    beam = load_robot(ROOT / "examples" / "beam_4cables.toml")
+    turned = replace(beam, platform=np.array([[-0.2, 0.3, 0.3], [-0.05, 0.5, 0.3], [0.25, 0.9, 0.3], [0.4, 1.1, 0.3]]),
+                     com=np.array([0.1, 0.7, 0.3]))
+    cables = (0, 1, 2, 3)
+    sub, ref = _solved(turned, cables), _solved(beam, cables)
+    assert sub.complete and sub.family.reading == "decimal" and len(sub.family.members) == len(ref.family.members) == 2
+    for f in sub.family.members:
+        v = _invariants(f, turned, cables)
+        assert min(np.max(np.abs(v - _invariants(g, beam, cables))) for g in ref.family.members) <= 1e-8
+        assert f.certified
 
 
 def test_the_beam_is_complete():
