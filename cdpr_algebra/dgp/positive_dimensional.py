@@ -41,6 +41,7 @@ import numpy as np
 from cdpr_algebra.homotopy.clusters import duplicate_groups
 from cdpr_algebra.homotopy.local_dimension import local_dimension
 from cdpr_algebra.model.pose import angles_from_matrix, rotation_taking
+from cdpr_algebra.model.rod_equations import BINARY
 from cdpr_algebra.model.stability import stability_classes
 from cdpr_algebra.model.taut_equations import decode, encode
 from cdpr_algebra.report.jsonable import jsonable
@@ -124,11 +125,11 @@ class Family:
     members: tuple = ()  # FamilyMember: the real families with positive tensions and a feasible arc
     method: str = LOCAL_DIMENSION  # or ROD: the families are the roots of the rod system (dgp.rod)
     certified: int | None = None  # ROD: roots of the rod system proven distinct (whole families, real or complex)
-    reading: str = "binary"  # ROD: the line's points collinear in the robot's doubles, or "decimal" (dgp.rod)
+    reading: str = BINARY  # ROD: the line's points collinear in the robot's doubles, or "decimal" (dgp.rod)
 
     def describe(self) -> str:
         if self.method == ROD:
-            where = ("exactly, in the robot's binary data" if self.reading == "binary" else
+            where = ("exactly, in the robot's binary data" if self.reading == BINARY else
                      "exactly in the decimals that print the robot's data, not in its doubles, off the line by "
                      "rounding: the robot read in decimal is solved")
             return (f"the taut anchors and the centre of mass lie on one line ({where}): "
@@ -265,7 +266,7 @@ def _turning_members(robot, rho, cables, W, family, tension_tol, residual) -> Fa
     return replace(family, groups=tuple(len(g) for g in groups), real=real, members=tuple(members))
 
 
-def turning_member(robot, rho, idx, B, tau, residual, reading: str = "binary") -> FamilyMember | None:
+def turning_member(robot, rho, idx, B, tau, residual, reading: str = BINARY) -> FamilyMember | None:
     """The :class:`FamilyMember` of the real family of the 0-based taut cables ``idx`` whose taut anchors are at the
     world points ``B`` (m x 3) with the positive ``tau`` (m): R0 takes the platform's anchor line to the world's,
     the turning angles at which the other cables stay slack (:func:`.one_cable.slack_arcs`), the pose in the middle

@@ -118,6 +118,7 @@ from pathlib import Path
 
 import numpy as np
 
+from cdpr_algebra.model.rod_equations import BINARY
 from cdpr_algebra.model.taut_equations import decode
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .normalization import normalized_problem, world_coordinates
@@ -822,7 +823,7 @@ def dgp_table(result: DGPResult, n: int) -> str:
                      + ", ".join(str(list(s.taut)) for s in excluded))
     for s in result.subproblems:
         for f in s.family.members if s.family is not None else ():
-            method = s.family.method + (", the robot read in decimal" if s.family.reading != "binary" else "")
+            method = s.family.method + (", the robot read in decimal" if s.family.reading != BINARY else "")
             lines.append("  " + f.describe(s.family.fixed, method))
     for s in result.subproblems:
         if s.excluded is not None:
