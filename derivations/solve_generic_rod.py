@@ -106,15 +106,19 @@ def solve_generic(m: int, seed: int = 1, no_progress: int = 8, extra: int = 3, v
     t1 = time.perf_counter()
     tr = verify_solution_completeness(fam, res.parameters, X, seed=seed, options=TraceTestOptions(),
                                       verbose=verbose, coordinates=POSE_COORDINATES, chart=chart)
-    meta["trace_test"] = {"status": tr.trace.status, "count": int(len(X)), "seed": seed,
-                          "coordinates": [int(c) for c in tr.coordinates], "chart": chart,
-                          "W10_count": int(len(tr.W10)), "trace": tr.trace.to_dict(), "witnesses": tr.witnesses,
-                          "seconds": time.perf_counter() - t1}
+    meta["trace_test"] = trace_record(tr, len(X), seed, chart, time.perf_counter() - t1)
     meta["seconds"] = time.perf_counter() - t0
     if verbose:
         print(f"m = {m}: trace test {tr.trace.status} ({len(tr.W10)} witness points, "
               f"{meta['trace_test']['seconds']:.1f} s): {tr.trace.to_dict()}", flush=True)
     return res.parameters, X, meta
+
+
+def trace_record(tr, count: int, seed: int, chart, seconds: float) -> dict:
+    """The record of a trace test ``tr`` of ``count`` stored solutions, kept in the file's ``meta["trace_test"]``."""
+    return {"status": tr.trace.status, "count": int(count), "seed": seed,
+            "coordinates": [int(c) for c in tr.coordinates], "chart": chart, "W10_count": int(len(tr.W10)),
+            "trace": tr.trace.to_dict(), "witnesses": tr.witnesses, "seconds": seconds}
 
 
 def run_phc(m: int, seed: int = 7, timeout: float = 3600, verbose: bool = True) -> dict:
@@ -164,9 +168,7 @@ def retrace(m: int, seed: int, eps: float, chart: int | None = None, verbose: bo
     t0 = time.perf_counter()
     tr = verify_solution_completeness(fam, p0, X0, seed=seed, options=TraceTestOptions(eps=eps), verbose=verbose,
                                       coordinates=POSE_COORDINATES, chart=chart)
-    rec = {"status": tr.trace.status, "count": int(len(X0)), "seed": seed,
-           "coordinates": [int(c) for c in tr.coordinates], "chart": chart, "W10_count": int(len(tr.W10)),
-           "trace": tr.trace.to_dict(), "witnesses": tr.witnesses, "seconds": time.perf_counter() - t0}
+    rec = trace_record(tr, len(X0), seed, chart, time.perf_counter() - t0)
     t = tr.trace
     print(f"m = {m}: trace test with eps = {eps}: {t.status}, relative {t.relative:.1e}, detection {t.detection:.1e} "
           f"(tol {t.tol:.0e}), {len(tr.W10)} witness points, {rec['seconds']:.0f} s", flush=True)

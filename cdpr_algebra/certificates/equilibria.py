@@ -59,6 +59,7 @@ import numpy as np
 from flint import arb, arb_mat
 
 from cdpr_algebra.generated.taut_equations import taut_equations, taut_residual
+from cdpr_algebra.model.rod_equations import BINARY
 from cdpr_algebra.model.taut_equations import decode, encode, from_cable_frame, to_cable_frame
 from cdpr_algebra.intervals.balls import KrawczykResult, bounds, krawczyk_certify, sign, symmetric_inertias
 from cdpr_algebra.report.jsonable import jsonable
@@ -340,14 +341,16 @@ def _scales(robot, m, cols, L, x=None):
 
 
 # --------------------------------------------------------------------------------------------- DGP
-def _robot_data(robot, taut, num, com_at_origin: bool = False, frame=None):
+def _robot_data(robot, taut, num, com_at_origin: bool = False, frame=None, reading: str = BINARY):
     """(A, b, g, f) of the taut cables with numbers made by ``num`` (arb: exact balls; float).
     ``com_at_origin``: platform frame moved to G (b_i' - g', g' = 0; the difference is enclosed for arb);
-    ``frame``: (c, cb) of :attr:`Robot.cable_frame`, world origin moved to c and platform frame to cb."""
+    ``frame``: (c, cb) of :attr:`Robot.cable_frame`, world origin moved to c and platform frame to cb; ``reading``
+    DECIMAL: b_i' and g' as the decimals that print them (``num`` of the repr string: arb encloses it)."""
     c, cb = frame if frame is not None else (np.zeros(3), np.zeros(3))
+    point = (lambda v: num(float(v))) if reading == BINARY else (lambda v: num(repr(float(v))))
     A = [[num(float(v)) - num(float(c[k])) for k, v in enumerate(robot.base[i])] for i in taut]
-    g = [num(float(v)) - num(float(cb[k])) for k, v in enumerate(robot.com)]
-    b = [[num(float(v)) - num(float(cb[k])) for k, v in enumerate(robot.platform[i])] for i in taut]
+    g = [point(v) - num(float(cb[k])) for k, v in enumerate(robot.com)]
+    b = [[point(v) - num(float(cb[k])) for k, v in enumerate(robot.platform[i])] for i in taut]
     if com_at_origin:
         b = [[bi[k] - g[k] for k in range(3)] for bi in b]
         g = [num(0.0)] * 3
@@ -582,7 +585,6 @@ def certify_endpoints(robot, lengths, groups, balls=None) -> list:
                               boxes.center[sl], boxes.reason[sl])
         out.append((bg, bg.meeting()))
     return out
-
 
 
 def _frame_constants(robot, rows, frame, interval: bool):

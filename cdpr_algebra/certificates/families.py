@@ -74,11 +74,7 @@ def certify_turning_equilibrium(robot, lengths, cables, position, rotation, tens
     x0 = to_cable_frame(encode(np.asarray(position, float), R0, tensions / rho[taut])[None], frame)[0]
 
     def make_system(num):
-        A, b, g, f = _robot_data(robot, taut, num, frame=frame)
-        if reading != BINARY:  # the line's points as the decimals that print them (num of a string: arb encloses it)
-            b, g = ([[num(repr(float(v))) - num(float(frame[1][k])) for k, v in enumerate(point)]
-                     for point in robot.platform[taut]],
-                    [num(repr(float(v))) - num(float(frame[1][k])) for k, v in enumerate(robot.com)])
+        A, b, g, f = _robot_data(robot, taut, num, frame=frame, reading=reading)
         return _gauged_system(A, b, g, f, [num(float(rho[i])) ** 2 for i in taut], *gauge)
 
     scale = _scales(robot, m, range(12 + m), robot.cable_scale, x0)
