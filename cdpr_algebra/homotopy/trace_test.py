@@ -82,6 +82,8 @@ class TraceTestOptions:
     * ``tol`` [1e-8]: largest relative trace accepted as zero (see :class:`TraceResult`);
     * ``attempts`` [3]: gammas tried when a pencil path is lost;
     * ``direction_scale`` [1.0]: q0 = p0 + direction_scale (1 + |p0|) z, z standard complex normal;
+    * ``fixed_parameters`` [()]: indices of parameters where z = 0: the curve stays in that linear subfamily (the
+      test of a subfamily's own solution set, as :class:`.monodromy.MonodromyOptions` finds it);
     * ``witness_loops_no_progress`` [5]: the first W10 monodromy runs in batches of this many loops and ends
       after a batch without a new distinct point (:func:`distinct_points`, conditioning-aware);
     * ``confirm_loops_no_progress`` [3]: the same for the re-solves at other random l;
@@ -102,6 +104,7 @@ class TraceTestOptions:
     tol: float = 1e-8
     attempts: int = 3
     direction_scale: float = 1.0
+    fixed_parameters: tuple = ()
     witness_loops_no_progress: int = 5
     confirm_loops_no_progress: int = 3
     confirmations: int = 3
@@ -183,10 +186,12 @@ class TraceTestResult:
         return self.trace.passed
 
 
-def random_direction(p0, rng, scale: float = 1.0):
-    """q0 = p0 + scale (1 + |p0|) z, z standard complex normal (componentwise)."""
+def random_direction(p0, rng, scale: float = 1.0, fixed=()):
+    """q0 = p0 + scale (1 + |p0|) z, z standard complex normal (componentwise), zero at the indices ``fixed``."""
     p0 = np.asarray(p0, dtype=complex)
-    return p0 + scale * (1 + np.abs(p0)) * _crandn(rng, *p0.shape)
+    z = _crandn(rng, *p0.shape)
+    z[list(fixed)] = 0.0
+    return p0 + scale * (1 + np.abs(p0)) * z
 
 
 def _track(system, X, p_from, p_to, options, seed):
@@ -307,7 +312,7 @@ def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestO
     p0 = np.asarray(p0, dtype=complex)
     W01 = np.asarray(W01, dtype=complex).reshape(-1, system.n)
     if q0 is None:
-        q0 = random_direction(p0, rng, o.direction_scale)
+        q0 = random_direction(p0, rng, o.direction_scale, o.fixed_parameters)
     q0 = np.asarray(q0, dtype=complex)
     slice_ = TraceSliceSystem(system, p0, q0 - p0, cs)
     record = {"moves": [], "monodromy": []}
