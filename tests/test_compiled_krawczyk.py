@@ -94,7 +94,7 @@ def test_generated_interval_evaluator_is_the_rewrite_of_the_float_one():
 def test_compiled_krawczyk_proves_what_the_interval_objects_prove(example, cables, monkeypatch):
     """The DGP endpoints of a taut set certified with the compiled Krawczyk round and with the Python interval
     objects: the same roots proven, each box holding the other's centre, widths within 10 %."""
-    from cdpr_algebra.certificates import equilibria as EQ
+    from cdpr_algebra.certificates import endpoints as EQ
     from cdpr_algebra.dgp import solve as D
     from cdpr_algebra.model.robot import load_robot
 

@@ -152,6 +152,7 @@ def test_dgp_roots_proven_in_balls_are_enclosed_to_double_precision(monkeypatch)
     The cap on ball retries holds per group (taut set), not per call: a subproblem's certificate does not depend on
     the subproblems certified with it (one thread certifies every set of an m in one call, two threads one set a
     call)."""
+    from cdpr_algebra.certificates import endpoints as EP
     from cdpr_algebra.certificates import equilibria as EQ
     from cdpr_algebra.dgp import solve as D
     from cdpr_algebra.model.robot import load_robot
@@ -160,7 +161,7 @@ def test_dgp_roots_proven_in_balls_are_enclosed_to_double_precision(monkeypatch)
     rho = np.asarray(robot.lengths, float)
     cables = (1, 3, 4, 5)
     _, _, Z = D._solve_taut_set(robot, rho, cables)
-    ((double, _),) = EQ.certify_endpoints(robot, rho, [(cables, Z)], [False])
+    ((double, _),) = EP.certify_endpoints(robot, rho, [(cables, Z)], [False])
     bad = np.flatnonzero(~double.proven)
     assert len(bad) >= 10
     boxes = type(double)(double.proven[bad], double.lo[bad], double.hi[bad], double.real[bad], double.nonreal[bad],
@@ -168,14 +169,14 @@ def test_dgp_roots_proven_in_balls_are_enclosed_to_double_precision(monkeypatch)
     scale = np.broadcast_to(EQ._scales(robot, len(cables), range(12 + len(cables)), robot.cable_scale),
                             (Z.shape[1],))
     frame = robot.cable_frame  # certify_endpoints works in the cable frame
-    out = EQ._retry_in_balls(robot, rho, np.repeat(np.array(cables)[None], len(bad), axis=0),
+    out = EP._retry_in_balls(robot, rho, np.repeat(np.array(cables)[None], len(bad), axis=0),
                              to_cable_frame(Z[bad], frame), scale, boxes, np.ones(len(bad), bool), frame)
     assert out.proven.all()
     size = np.maximum(np.abs(np.hstack([out.center.real, out.center.imag])), np.hstack([scale, scale]))
     assert ((out.hi - out.lo) / size).max() <= 1e-15
-    monkeypatch.setattr(EQ, "BALL_RETRY_MAX", 3)
+    monkeypatch.setattr(EP, "BALL_RETRY_MAX", 3)
     group = np.arange(len(bad)) % 2  # two taut sets' worth of roots in one call
-    capped = EQ._retry_in_balls(robot, rho, np.repeat(np.array(cables)[None], len(bad), axis=0),
+    capped = EP._retry_in_balls(robot, rho, np.repeat(np.array(cables)[None], len(bad), axis=0),
                                 to_cable_frame(Z[bad], frame), scale, boxes, np.ones(len(bad), bool), frame, group)
     assert capped.proven.sum() == 6 and [capped.proven[group == g].sum() for g in (0, 1)] == [3, 3]
     assert all("more than 3 such roots in its taut set" in r for r, ok in zip(capped.reason, capped.proven) if not ok)

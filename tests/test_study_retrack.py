@@ -128,7 +128,7 @@ def test_ill_conditioned_study_limits_are_rescued_and_proven(monkeypatch):
     quadratically there, sixteenth session), and before they were left failed.  Newton's method in the taut system
     settles them; every regular endpoint of the subproblem, those included, is then proven a root unique in its box,
     the boxes pairwise disjoint (ball arithmetic where double precision does not suffice)."""
-    from cdpr_algebra.certificates.equilibria import certify_endpoints
+    from cdpr_algebra.certificates.endpoints import certify_endpoints
     from cdpr_algebra.dgp import study_retrack as SR
 
     robot = load_robot(ROOT / "examples" / "seed000_test2.toml")

@@ -65,6 +65,7 @@ from cdpr_algebra.intervals.balls import KrawczykResult, bounds, krawczyk_certif
 from cdpr_algebra.report.jsonable import jsonable
 
 BOX_RTOL = 1e-9  # max width of the certified box relative to the scale of each unknown
+FLINT = threading.RLock()  # python-flint's working precision is global to the process: one thread at a time uses it
 
 # unknowns of the taut system
 _P, _U, _V, _W, _LAM = 0, 3, 6, 9, 12
@@ -251,20 +252,23 @@ def _hessian_class(inertia, m) -> tuple[str, str | None]:
     return "proven", "<>"
 
 
-def _robot_balls(robot, frame=None):
+def _robot_balls(robot, frame=None, reading: str = BINARY):
     """(A_i, b'_i, g') of all n cables as balls: exact, or in the ``frame`` (c, cb) of :attr:`Robot.cable_frame`
-    (A_i - c, b'_i - cb, g' - cb, the differences enclosed)."""
-    return _robot_data(robot, range(robot.n), arb, frame=frame)[:3]
+    (A_i - c, b'_i - cb, g' - cb, the differences enclosed); ``reading``: as in :func:`_robot_data`."""
+    return _robot_data(robot, range(robot.n), arb, frame=frame, reading=reading)[:3]
 
 
-def _consequences(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None, frame=None) -> Certificate:
+def _consequences(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None, frame=None,
+                  reading: str = BINARY) -> Certificate:
     """Certificate from the certified enclosures: p (3 balls), R (3 x 3 balls), lam (m balls) of the taut cables.
     ``lengths``: all n lengths (floats) or None (IGP: lengths of the taut cables enclosed from the box);
     ``L``: robot.cable_scale; ``frame``: p is the platform-frame origin in the frame (c, cb) of
-    :attr:`Robot.cable_frame` (the robot's position c + p - R cb is enclosed for the certificate)."""
+    :attr:`Robot.cable_frame` (the robot's position c + p - R cb is enclosed for the certificate); ``reading``: the
+    robot's doubles or its decimals (:func:`_robot_data`)."""
     balls, position = None, None
+    if frame is not None or reading != BINARY:
+        balls = _robot_balls(robot, frame, reading)
     if frame is not None:
-        balls = _robot_balls(robot, frame)
         c, cb = (list(map(float, v)) for v in frame)
         position = [arb(c[k]) + p[k] - (R[k][0] * cb[0] + R[k][1] * cb[1] + R[k][2] * cb[2]) for k in range(3)]
     return _finish([_enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra, balls,
@@ -368,7 +372,8 @@ def _krawczyk(make_system, x0, scale, box_rtol, refine=0):
                             refine=refine)
 
 
-def certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol: float = BOX_RTOL) -> Certificate:
+def certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol: float = BOX_RTOL,
+                      reading: str = BINARY) -> Certificate:
     """Certificate of one DGP root with the 0-based taut ``cables`` (m = 1..6), cable ``lengths`` (all n, None:
     the robot's), pose (``position`` of the platform-frame origin, ``rotation``) and the m taut ``tensions``.
     Computed at python-flint's default 53 bits, holding :data:`FLINT` (the working precision is global to the
@@ -377,15 +382,17 @@ def certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_
     arithmetic (``refine`` of :func:`cdpr_algebra.intervals.balls.krawczyk_certify`; the extra field
     ``precision_bits`` says so): on an ill-conditioned system (large internal forces, condition numbers 1e7-1e10)
     the residual in doubles is noise.  Either way the given root must lie within the box tolerance of the proven
-    zero; a root that doubles could not locate that well is first polished by :func:`polished_taut_root`."""
+    zero; a root that doubles could not locate that well is first polished by :func:`polished_taut_root`.
+    ``reading`` DECIMAL: a root of the robot read in decimal (:func:`_robot_data`; ``extra.reading`` says so)."""
     from flint import ctx
 
     with FLINT, ctx.workprec(53):
-        cert = _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol)
+        cert = _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol, reading=reading)
     if cert.exists_unique:
         return cert
     with FLINT, ctx.workprec(RETRY_PREC):
-        retry = _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol, REFINE_STEPS)
+        retry = _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol, REFINE_STEPS,
+                                   reading)
     if not retry.exists_unique:
         return cert
     return replace(retry, extra={**retry.extra, "precision_bits": RETRY_PREC})
@@ -396,7 +403,8 @@ REFINE_STEPS = 8  # Newton steps in ball arithmetic
 POLISH_RTOL = 1e-3  # largest move of polished_taut_root, relative to the scale of each unknown (_scales): as BALL_MAX_MOVE
 
 
-def polished_taut_root(robot, lengths, cables, position, rotation, tensions, max_move: float = POLISH_RTOL):
+def polished_taut_root(robot, lengths, cables, position, rotation, tensions, max_move: float = POLISH_RTOL,
+                       reading: str = BINARY):
     """(position, rotation, m tensions) of the root of the DGP system of the 0-based taut ``cables`` near the given
     one, by Newton's method with the residual in :data:`RETRY_PREC`-bit ball arithmetic in the cable frame
     (:func:`cdpr_algebra.intervals.balls.refined_root`), rounded to doubles; None when it does not converge or moves
@@ -407,7 +415,7 @@ def polished_taut_root(robot, lengths, cables, position, rotation, tensions, max
 
     from cdpr_algebra.intervals.balls import refined_root
 
-    problem = _taut_problem(robot, lengths, cables, position, rotation, tensions)
+    problem = _taut_problem(robot, lengths, cables, position, rotation, tensions, reading)
     if isinstance(problem, Certificate):
         return None
     x0, make_system, scale, frame, rho, taut = problem
@@ -425,7 +433,7 @@ def polished_taut_root(robot, lengths, cables, position, rotation, tensions, max
     return p[0], R[0], lam[0] * rho[taut]
 
 
-def _taut_problem(robot, lengths, cables, position, rotation, tensions):
+def _taut_problem(robot, lengths, cables, position, rotation, tensions, reading: str = BINARY):
     """(x0, make_system, scale, frame, rho, taut) of the DGP root in the cable frame (:attr:`Robot.cable_frame`), or the
     failed Certificate of a taut set without isolated roots."""
     rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
@@ -440,7 +448,7 @@ def _taut_problem(robot, lengths, cables, position, rotation, tensions):
     x0 = to_cable_frame(encode(np.asarray(position, float), R0, tensions / rho[taut])[None], frame)[0]
     if m >= 2:
         def make_system(num):
-            A, b, g, f = _robot_data(robot, taut, num, frame=frame)
+            A, b, g, f = _robot_data(robot, taut, num, frame=frame, reading=reading)
             rho2 = [num(float(rho[i])) ** 2 for i in taut]
             return lambda x, jac: taut_system(x, A, b, g, f, rho2, jac)
     else:
@@ -450,13 +458,14 @@ def _taut_problem(robot, lengths, cables, position, rotation, tensions):
                                            "a 3-dof family, no isolated root to certify", None, taut)
 
         def make_system(num):
-            A, b, g, f = _robot_data(robot, taut, num, frame=frame)
+            A, b, g, f = _robot_data(robot, taut, num, frame=frame, reading=reading)
             return _gauged_system(A, b, g, f, [num(float(rho[taut[0]])) ** 2], *gauge)
     return x0, make_system, _scales(robot, m, range(12 + m), robot.cable_scale, x0), frame, rho, taut
 
 
-def _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol, refine=0):
-    problem = _taut_problem(robot, lengths, cables, position, rotation, tensions)
+def _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box_rtol, refine=0,
+                       reading: str = BINARY):
+    problem = _taut_problem(robot, lengths, cables, position, rotation, tensions, reading)
     if isinstance(problem, Certificate):
         return problem
     x0, make_system, scale, frame, rho, taut = problem
@@ -466,7 +475,8 @@ def _certify_taut_root(robot, lengths, cables, position, rotation, tensions, box
     X = kr.enclosure
     R = [[X[_U + k], X[_V + k], X[_W + k]] for k in range(3)]
     return _consequences("dgp", robot, taut, rho, X[0:3], R, X[12:], kr, kr.relative_width(scale),
-                         robot.cable_scale, frame=frame)
+                         robot.cable_scale, extra=None if reading == BINARY else {"reading": reading}, frame=frame,
+                         reading=reading)
 
 
 def _one_cable_gauge(robot, i, R0):
@@ -522,187 +532,6 @@ def certify_dgp_solutions(robot, solutions, lengths=None, box_rtol: float = BOX_
         out.append(certify_taut_root(robot, lengths, cables, s.position, s.rotation,
                                      np.asarray(s.tensions, float)[cables], box_rtol))
     return out
-
-
-def certify_endpoints(robot, lengths, groups, balls=None) -> list:
-    """Krawczyk boxes of complex DGP roots (issue 15, item 4), for several taut sets with the same m >= 2 at once.
-
-    ``groups``: list of (0-based taut ``cables``, Z (N, 12 + m) complex roots of their taut system in world
-    coordinates (p, u, v, w, lam)); ``lengths``: all n (None: the robot's).  One certification over every root of
-    every group (each row with the constants of its own taut set), the Krawczyk rounds compiled
-    (:func:`_compiled_krawczyk`, without the GIL).  Returns, per group,
-    (:class:`cdpr_algebra.intervals.complex_krawczyk.ComplexRootBoxes`, overlapping (N,) bool): each root proven unique in its box of
-    C^(12+m) (real or non-real proven where decidable), and the proven boxes meeting another proven box of the
-    same group (those roots are not proven distinct).  The roots are certified in the cable frame
-    (:attr:`Robot.cable_frame`: p' = p + R cb - c, the boxes are of those coordinates; distinctness and reality do not
-    depend on the frame).  Constants: A_i - c, b'_i - cb, g' - cb, Q d and rho_i^2 enclosed.  ``balls`` (one bool per
-    group, default all True): retry the roots of that group that double precision could not certify in ball
-    arithmetic."""
-    from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes, certify_complex_roots
-    from cdpr_algebra.intervals.arithmetic import Interval
-
-    groups = [(list(map(int, c)), np.asarray(Z, dtype=complex).reshape(len(Z), 12 + len(c))) for c, Z in groups]
-    if not groups:
-        return []
-    m = len(groups[0][0])
-    if any(len(c) != m for c, _ in groups) or m < 2:
-        raise ValueError("certify_endpoints: every group needs the same number m >= 2 of taut cables")
-    rho = np.asarray(robot.lengths if lengths is None else lengths, dtype=float)
-    rows = np.concatenate([np.repeat(np.asarray(c)[None], len(Z), axis=0) for c, Z in groups]).reshape(-1, m)
-    frame = robot.cable_frame
-    Z = to_cable_frame(np.concatenate([Z for _, Z in groups]).reshape(-1, 12 + m), frame)
-    f_float = [robot.load * float(c) for c in robot.load_direction]
-    f_iv = [Interval.point(robot.load) * float(c) for c in robot.load_direction]
-    constants = {iv: _frame_constants(robot, rows, frame, iv) for iv in (False, True)}
-
-    def system(f, square, iv):
-        """The taut system of the rows r with the constants of their taut sets (enclosed with ``iv``; f and rho^2
-        as ``square`` makes them)."""
-        A_all, b_all, g = constants[iv]
-
-        def evaluate(x, r, jac):
-            A = [[a[r] for a in Ai] for Ai in A_all]
-            b = [[c[r] for c in bi] for bi in b_all]
-            return taut_system(x, A, b, g, f, [square(rho[rows[r][:, i]]) for i in range(m)], jacobian=jac)
-
-        return evaluate
-
-    rigorous = system(f_iv, lambda v: Interval.point(v).sqr(), True)  # rho^2 enclosed
-    approximate = system(f_float, lambda v: v ** 2, False)
-
-    scale = _scales(robot, m, range(12 + m), robot.cable_scale)
-    boxes = certify_complex_roots(rigorous, approximate, Z, scale,
-                                  kernel=_compiled_krawczyk(rho, rows, f_iv, constants[True]))
-    balls = [True] * len(groups) if balls is None else list(balls)
-    retry = np.concatenate([np.full(len(Zg), bool(f)) for (_, Zg), f in zip(groups, balls)]).astype(bool)
-    group = np.concatenate([np.full(len(Zg), g) for g, (_, Zg) in enumerate(groups)])
-    boxes = _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry, frame, group)
-    out, k0 = [], 0
-    for _, Zg in groups:
-        sl = slice(k0, k0 + len(Zg))
-        k0 += len(Zg)
-        bg = ComplexRootBoxes(boxes.proven[sl], boxes.lo[sl], boxes.hi[sl], boxes.real[sl], boxes.nonreal[sl],
-                              boxes.center[sl], boxes.reason[sl])
-        out.append((bg, bg.meeting()))
-    return out
-
-
-def _frame_constants(robot, rows, frame, interval: bool):
-    """(A, b, g) of the roots' taut sets (``rows``: N x m cable indices) in the frame (c, cb): A_i - c (m x 3 arrays
-    over the roots), b'_i - cb, g' - cb; enclosed (:class:`cdpr_algebra.intervals.arithmetic.Interval`) with
-    ``interval``, else rounded."""
-    from cdpr_algebra.intervals.arithmetic import Interval
-
-    c, cb = frame
-    num = Interval.point if interval else (lambda v: v)
-
-    def shifted(values, o):
-        return num(values) - num(float(o))
-
-    m = rows.shape[1]
-    A = [[shifted(robot.base[rows[:, i], k], c[k]) for k in range(3)] for i in range(m)]
-    b = [[shifted(robot.platform[rows[:, i], k], cb[k]) for k in range(3)] for i in range(m)]
-    g = [shifted(robot.com[k], cb[k]) for k in range(3)]
-    return A, b, g
-
-
-def _compiled_krawczyk(rho, rows, f_iv, constants):
-    """The Krawczyk operator of the taut systems of the roots (``rows``: their taut sets, N x m) over boxes, compiled
-    (:func:`cdpr_algebra.intervals.complex_kernels.krawczyk_kernel` on the generated interval evaluator
-    :mod:`cdpr_algebra.generated.taut_equations_intervals`), with the constants of :func:`certify_endpoints`
-    (``constants``: the enclosed (A, b, g) of :func:`_frame_constants`; rho_i^2 and Q d enclosed).  Same operator
-    as the interval objects, without the GIL."""
-    from cdpr_algebra.generated.taut_equations_intervals import taut_equations, taut_residual
-    from cdpr_algebra.homotopy.compiled import function_address
-    from cdpr_algebra.intervals.arithmetic import Interval
-    from cdpr_algebra.intervals.complex_kernels import EVALUATOR_TYPE, krawczyk_kernel
-
-    # the evaluators by their addresses, looked up once (as the tracker's: homotopy.compiled.function_address)
-    ev, res = function_address(taut_equations, EVALUATOR_TYPE), function_address(taut_residual, EVALUATOR_TYPE)
-    m = rows.shape[1]
-    A, b, g = constants
-    rho2 = [Interval.point(rho[rows[:, i]]).sqr() for i in range(m)]
-    params = _parameters(A, b, g, f_iv, rho2)
-    P = np.zeros((len(rows), len(params), 4))  # (lo, hi, 0, 0): real intervals
-    for k, v in enumerate(params):
-        P[:, k, 0], P[:, k, 1] = (v.lo, v.hi) if isinstance(v, Interval) else (v, v)
-
-    def kernel(part, y, r):
-        y = np.ascontiguousarray(y, dtype=float)
-        K_lo, K_hi = np.empty_like(y), np.empty_like(y)
-        ok = np.zeros(len(y), dtype=bool)
-        krawczyk_kernel(ev, res, y, np.ascontiguousarray(r, dtype=float), np.ascontiguousarray(P[part]), K_lo, K_hi,
-                        ok)
-        return Interval(K_lo, K_hi), ok
-
-    return kernel
-
-
-BALL_RETRY_MAX = 400  # roots per group (taut set) retried in ball arithmetic (milliseconds each)
-BALL_PREC = 256  # bits: the constants, and the last attempt of the ball retry
-BALL_PRECS = (128, BALL_PREC)  # the ball retry's attempts (the first suffices for condition numbers up to ~1e25)
-FLINT = threading.RLock()  # python-flint's working precision is global to the process: one thread at a time uses it
-# How far (relative to the scale) the ball retry's Newton steps may move an endpoint before its box is built.  The
-# homotopy solves the robot's equations with normalized parameters rounded to doubles; a root of condition number
-# kappa moves by ~kappa x 1e-16 between the two systems (measured: 1e-6 .. 1e-5 in the tensions of
-# tests/large_forces.py's robots at kappa ~ 1e11), beyond the box width limit.  The proof is of a root of the robot's
-# own equations near the endpoint; what it serves (distinct proven roots counted against the generic count, boxes
-# pairwise disjoint) does not depend on the size of the move.
-BALL_MAX_MOVE = 1e-3
-
-
-def _retry_in_balls(robot, rho, rows, Z, scale, boxes, retry, frame=None, group=None):
-    """The roots that double-precision interval arithmetic could not certify, tested again in complex ball
-    arithmetic at ``BALL_PRECS`` bits (128, then 256 where 128 does not prove it)
-    (:func:`cdpr_algebra.intervals.complex_krawczyk.certify_complex_root_balls`; only rows with ``retry``, at most
-    ``BALL_RETRY_MAX`` of them per ``group`` (one id per row, None: one group), the others keep their reason; a cap per
-    group, not per call, so that a subproblem's certificate does not depend on the subproblems certified with it;
-    ``frame``: Z's frame, see :func:`certify_endpoints`, None for world coordinates)."""
-    from cdpr_algebra.intervals.complex_krawczyk import ComplexRootBoxes
-
-    group = np.zeros(len(Z), dtype=int) if group is None else np.asarray(group)
-    todo, capped, seen = [], [], {}
-    for k in np.flatnonzero(~boxes.proven & retry):
-        if np.all(np.isfinite(Z[k])):
-            seen[group[k]] = seen.get(group[k], 0) + 1
-            (todo if seen[group[k]] <= BALL_RETRY_MAX else capped).append(k)
-    proven, lo, hi = boxes.proven.copy(), boxes.lo.copy(), boxes.hi.copy()
-    real, nonreal, reason = boxes.real.copy(), boxes.nonreal.copy(), list(boxes.reason)
-    for k in np.flatnonzero(~boxes.proven & ~retry):
-        reason[k] += " (not retried in ball arithmetic: its subproblem has failed paths)"
-    for k in capped:
-        reason[k] += f" (not retried in ball arithmetic: more than {BALL_RETRY_MAX} such roots in its taut set)"
-    if todo:
-        with FLINT:
-            _ball_proofs(robot, rho, rows, Z, scale, todo, proven, lo, hi, real, nonreal, reason, frame)
-    return ComplexRootBoxes(proven, lo, hi, real, nonreal, boxes.center, tuple(reason))
-
-
-def _ball_proofs(robot, rho, rows, Z, scale, todo, proven, lo, hi, real, nonreal, reason, frame=None):
-    """The ball-arithmetic Krawczyk test of the roots ``todo`` (see :func:`_retry_in_balls`; updates the arrays)."""
-    from flint import ctx
-
-    from cdpr_algebra.intervals.complex_krawczyk import certify_complex_root_balls
-
-    with ctx.workprec(BALL_PREC):  # the constants too: rho_i^2 of a double is exact at BALL_PREC bits, not at 53
-        f = [arb(robot.load) * arb(float(c)) for c in robot.load_direction]
-        for k in todo:
-            taut = [int(c) for c in rows[k]]
-            A, b, g, _ = _robot_data(robot, taut, arb, frame=frame)  # exact at BALL_PREC
-            rho2 = [arb(float(rho[i])) * arb(float(rho[i])) for i in taut]
-
-            def system(x, jac, A=A, b=b, rho2=rho2):
-                return taut_system(x, A, b, g, f, rho2, jacobian=jac)
-
-            for prec in BALL_PRECS:  # the constants stay exact (BALL_PREC); arithmetic at prec rounds outward
-                ok, lk, hk, rk, nk, why = certify_complex_root_balls(system, Z[k], scale, prec=prec,
-                                                                     max_move=BALL_MAX_MOVE)
-                if ok:
-                    break
-            if ok:
-                proven[k], lo[k], hi[k], real[k], nonreal[k], reason[k] = True, lk, hk, rk, nk, ""
-            else:
-                reason[k] = why
 
 
 # --------------------------------------------------------------------------------------------- IGP

@@ -88,4 +88,4 @@ def certify_turning_equilibrium(robot, lengths, cables, position, rotation, tens
                              robot.cable_scale, extra={"family": "turning about the line of the taut anchors and G "
                                                                  "(gauge-fixed point; the arc is not certified)",
                                                        "reading": reading},
-                             frame=frame)
+                             frame=frame, reading=reading)

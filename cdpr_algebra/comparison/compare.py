@@ -22,7 +22,9 @@ where both sides stand behind their answer):
   ``complete = False``; undecided interval boxes) without a definite difference.  It is never counted as agreement.
   A taut set the homotopy solved as a rod (:mod:`cdpr_algebra.dgp.rod`: families turning about a line) is not
   compared either: the interval search lists isolated equilibria, and where the line holds only in the decimal
-  reading of the robot's numbers it searches the doubles, a robot off the line.
+  reading of the robot's numbers it searches the doubles, a robot off the line.  A taut set whose anchors alone are
+  collinear only in that reading (:mod:`cdpr_algebra.dgp.collinear_anchors`, G off the line: isolated equilibria)
+  is compared, and ``compared`` says that the two sides solved robots a rounding apart.
 
 **Pruning as a proof.**  The homotopy DGP skips a taut set when two cables cannot reach each other
 (|A_i A_j| > rho_i + rho_j + |b_i' b_j'|: B_i lies within rho_i of A_i, B_j within rho_j of A_j, and |B_i B_j| =
@@ -51,6 +53,7 @@ from cdpr_algebra.model.taut_sets import lengths_and_taut_sets, solve_each_taut_
 from cdpr_algebra.bp.results import BPOptions
 from cdpr_algebra.bp.search import solve_taut_set_interval
 from cdpr_algebra.dgp.positive_dimensional import ROD
+from cdpr_algebra.model.rod_equations import BINARY
 from cdpr_algebra.report.jsonable import jsonable
 
 __all__ = ["SubproblemComparison", "CrosscheckResult", "compare_taut_set", "crosscheck", "crosscheck_table",
@@ -280,6 +283,10 @@ def compare_taut_set(robot, rho, cables, options: BPOptions | None = None, seed:
                                  f"turning about a line, {family.reading} reading of the robot's data); the interval "
                                  f"search lists isolated equilibria of the robot's doubles"
                                  + (f"; interval search skipped ({isub.skipped})" if isub.skipped else ""))
+    elif getattr(hsub, "collinear_anchors", None) not in (None, BINARY) and compared:
+        # isolated equilibria of two robots a rounding apart: compared, and said
+        compared += " (the homotopy solved the robot read in decimal, its taut anchors collinear only so; the interval " \
+                    "search the robot's doubles)"
     return SubproblemComparison(taut1, hcount, isub.admissible, isub.n_undecided, agree, h_only, i_only,
                                 tuple(isub.undecided), th, isub.seconds, isub.boxes, hskip, isub.skipped, compared,
                                 hfailed)

@@ -123,20 +123,22 @@ from cdpr_algebra.model.taut_equations import decode
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
 from .normalization import normalized_problem, world_coordinates
 from .one_cable import one_cable_equilibria
-from .positive_dimensional import ROD, families_of_endpoints
+from .positive_dimensional import families_of_endpoints
 from .rod import rod_geometry, solve_rod_taut_set
 from .other_start import other_generic_instance
+from .collinear_anchors import collinear_start, fixed_parameters, line_frame
 from .tension_infinity import tension_infinity_undecided
 from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, study_roots, track_study_first
 from .unheld_roots import settle_on_unheld_roots
 from .taut_system import FastTautSystem, fast_family
+from .table import dgp_table, incompleteness, summary_line  # noqa: F401 (the module's public names)
 from cdpr_algebra.homotopy.results import FAILURES, OUTCOMES, SUCCESS, outcome_counts
 from cdpr_algebra.report.jsonable import jsonable
 from cdpr_algebra.model.pose import angles_from_matrix
 from cdpr_algebra.model.stability import stability_classes
 
 __all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune", "FastTautSystem",
-           "fast_family"]
+           "fast_family", "dgp_table", "summary_line", "incompleteness"]
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 REAL_TOL = 1e-6
@@ -179,6 +181,7 @@ class DGPSolution:
     certificate: object = None  # certify.Certificate (interval proof, issue 5) or None when not certified
     alternatives: tuple = ()  # the same pose found with other taut sets (redundantly constrained): DGPSolutions
     found_by: str = "homotopy"  # or "interval": proven by the branch and prune of a subproblem the homotopy left incomplete
+    reading: str = BINARY  # DECIMAL: an equilibrium of the robot read in decimal (taut anchors collinear only so)
 
     def with_certificate(self, cert) -> "DGPSolution":
         """This solution with an interval certificate attached (the proven stability class replaces the floating
@@ -199,7 +202,7 @@ class DGPSolution:
                 "rotation": jsonable(self.rotation), "tensions": jsonable(self.tensions), "hessian": self.hessian,
                 "stable": self.stable, "certified": self.certified,
                 "certificate": None if self.certificate is None else self.certificate.to_dict(),
-                "found_by": self.found_by,
+                "found_by": self.found_by, "reading": self.reading,
                 "alternatives": [{"taut": list(a.taut), "tensions": jsonable(a.tensions), "hessian": a.hessian,
                                   "certified": a.certified} for a in self.alternatives]}
 
@@ -208,7 +211,7 @@ class DGPSolution:
 class DGPSubproblem:
     """One taut set.  ``outcomes``: paths per outcome (regular, singular, at_infinity, failed; they add up to
     ``paths``); ``failures``: failed paths per reason; ``certified`` (``certified_real``): regular endpoints proven
-    to be distinct roots (real roots) by Krawczyk boxes that are pairwise disjoint (:func:`cdpr_algebra.certificates.equilibria.certify_endpoints`;
+    to be distinct roots (real roots) by Krawczyk boxes that are pairwise disjoint (:func:`cdpr_algebra.certificates.endpoints.certify_endpoints`;
     None where no path was tracked), ``uncertified``: the others per reason; ``complete``: no path failed, the
     outcomes account for the generic count, and every regular endpoint is certified (or the set is proven empty by
     pruning, or proven to hold no admissible equilibrium by the interval filter -- ``excluded``, not tracked, its
@@ -216,7 +219,8 @@ class DGPSubproblem:
     certificates refuse, or singular endpoints, lie on a positive-dimensional solution set, what
     :mod:`.positive_dimensional` saw there (the real families of turning equilibria listed; the subproblem stays
     incomplete), or, for a taut set solved as a rod (:mod:`.rod`), its families, one per root (complete when the
-    rod's account is)."""
+    rod's account is); ``collinear_anchors``: the reading (binary or decimal) of a taut set whose anchors lie on a
+    line with G off it, tracked from that subfamily's generic set (:mod:`.collinear_anchors`; None otherwise)."""
 
     taut: tuple  # 1-based
     paths: int
@@ -236,6 +240,7 @@ class DGPSubproblem:
     excluded: int | None = None  # boxes of the interval proof that the set holds no admissible equilibrium (not tracked)
     retried: dict = field(default_factory=dict)  # paths whose outcome came from a retry, per kind (taut, detour, ..)
     family: object = None  # positive_dimensional.Family: uncertified endpoints on positive-dimensional sets
+    collinear_anchors: str | None = None  # tracked from the collinear-anchors subfamily: the robot's reading there
 
     @property
     def admissible_complete(self) -> bool:
@@ -270,7 +275,9 @@ class DGPSubproblem:
                 "failed_paths": self.failed_paths, "seconds": self.seconds, "skipped": self.skipped,
                 "settled": self.settled, "admissible_complete": self.admissible_complete, "excluded": self.excluded,
                 "retried": dict(self.retried),
-                "positive_dimensional": None if self.family is None else self.family.to_dict()}
+                "positive_dimensional": None if self.family is None else self.family.to_dict(),
+                "collinear_anchors": None if self.collinear_anchors is None else
+                {"start": "collinear_generic", "reading": self.collinear_anchors}}
 
 
 @dataclass(frozen=True)
@@ -452,7 +459,7 @@ def _track(m, target, seed, gamma, options=None, start=None):
         res = track_study_first(fast_family(m), m, p_gen, X_gen, target, seed, gamma, options,
                                 lambda rows: track_taut(rows, detour=False), estimates)
         if options.retry_mpmath and any(p.status in FAILURES for p in res.track.paths):
-            res, _ = _rescue_last_failed_paths(m, target, res, seed, gamma, options)
+            res, _ = _rescue_last_failed_paths(m, target, res, seed, gamma, options, start)
     else:
         res = track_taut(np.arange(len(X_gen)))
         if STUDY_RETRACK:
@@ -506,12 +513,12 @@ def _certify_solutions(robot, rho, sols):
     out = []
     for s in sols:
         idx = [t - 1 for t in s.taut]
-        cert = certify_taut_root(robot, rho, idx, s.position, s.rotation, s.tensions[idx])
+        cert = certify_taut_root(robot, rho, idx, s.position, s.rotation, s.tensions[idx], reading=s.reading)
         polished = None if cert.exists_unique else polished_taut_root(robot, rho, idx, s.position, s.rotation,
-                                                                      s.tensions[idx])
+                                                                      s.tensions[idx], reading=s.reading)
         if polished is not None:  # ill-conditioned: doubles did not locate the root within the certificate's box
             p, R, t = polished
-            c = certify_taut_root(robot, rho, idx, p, R, t)
+            c = certify_taut_root(robot, rho, idx, p, R, t, reading=s.reading)
             if c.exists_unique:
                 tau = np.zeros(robot.n)
                 tau[idx] = t
@@ -561,10 +568,12 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     if m == 1:
         return (*_solve_one_cable(robot, rho, cables[0]), None)
     line = rod_geometry(robot, cables) if rods else None
+    # taut anchors on a line, G off it: tracked inside the subfamily of collinear anchors (dgp.collinear_anchors)
+    frame = line_frame(robot, cables) if rods and line is None else None
     # not on a line: the interval filter reads the robot's doubles, which for a line collinear only in decimal are a
     # robot off the line, with other (isolated) equilibria (measured, twenty-sixth session: the flat plate with its
     # frame moved by (0.1, 0.2, 0.3), {2, 4} excluded while the decimal reading has an admissible family)
-    if exclude and line is None:
+    if exclude and line is None and (frame is None or frame.reading == BINARY):
         sub = excluded_subproblem(robot, rho, cables)
         if sub is not None:
             return sub, [], None
@@ -577,7 +586,10 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
                              complete=False), [], None
     fam = fast_family(m)
     target, c, L, Rw, cb = normalized_problem(robot, rho, cables)
-    res, failed = _track(m, target, seed, gamma=False, options=options)
+    start, fixed = None, ()
+    if frame is not None:  # the subfamily's own generic set, the line as the platform frame's x axis
+        target, start, fixed = frame.target(target, m, cb, L), collinear_start(m), fixed_parameters(m)
+    res, failed = _track(m, target, seed, gamma=False, options=options, start=start)
     # another route (gamma trick) when one or two paths failed, and the run with fewer failures is kept (each run is
     # a whole account).  Only a run with no failure completes the subproblem, and a new route seldom gives one: the
     # failures are mostly paths into the singular sets at infinity of the target itself, which every route meets.
@@ -586,19 +598,19 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     # (5 of 18 such); none of the 19 with 3 to 10 failures did.
     route = (seed, False)
     if 0 < failed <= RERUN_MAX_FAILED:
-        res2, failed2 = _track(m, target, seed + 7919, gamma=True, options=options)
+        res2, failed2 = _track(m, target, seed + 7919, gamma=True, options=options, start=start)
         other = res
         if failed2 < failed:
             res, failed, other, route = res2, failed2, res, (seed + 7919, True)
         if failed:  # the other run's regular roots that no path of this one holds settle its failed paths
             res, failed = _settle_on_other_runs_roots(m, target, res, other, options)
-        start = other_generic_instance(lambda p, s: _track(m, p, s, True)[0], *_generic(m)) \
-            if failed and OTHER_START else None
-        if start is not None:  # ... and those of a run from another generic instance (dgp.other_start)
-            res, failed = _settle_on_other_runs_roots(m, target, res, _track(m, target, seed, True, options, start)[0],
-                                                      options)
+        other_start = other_generic_instance(lambda p, s: _track(m, p, s, True, start=start)[0],
+                                             *(start or _generic(m)), fixed=fixed) if failed and OTHER_START else None
+        if other_start is not None:  # ... and those of a run from another generic instance (dgp.other_start)
+            res, failed = _settle_on_other_runs_roots(
+                m, target, res, _track(m, target, seed, True, options, other_start)[0], options)
     if 0 < failed <= AUTO_RESCUE_MAX_FAILED and not (options is not None and options.retry_mpmath):
-        res, failed = _rescue_last_failed_paths(m, target, res, *route, options)
+        res, failed = _rescue_last_failed_paths(m, target, res, *route, options, start)
     X = np.array([s.x for s in res.solutions]).reshape(-1, fam.n)
     finite = len(X)
     real = np.all(np.abs(X.imag) <= REAL_TOL * (1 + np.abs(X.real)), axis=1) if finite else np.zeros(0, bool)
@@ -611,6 +623,11 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
             Xr = Xr - np.linalg.solve(J.real, F.real[..., None])[..., 0]
         except np.linalg.LinAlgError:
             break
+
+    def back(Y):  # roots in the subfamily's platform frame -> the normalized problem's
+        return Y if frame is None else frame.roots_back(Y, m, cb, L)
+
+    Xr = back(Xr)
     tol = TENSION_RTOL * robot.load
     sols = []
     idx = list(cables)
@@ -629,33 +646,35 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
         tau = np.zeros(robot.n)
         tau[idx] = tau_S
         cls = _classify(robot, rho, cables, p, R, tau_S)
-        sols.append(DGPSolution(taut1, p, R, tau, cls))
+        sols.append(DGPSolution(taut1, p, R, tau, cls, reading=BINARY if frame is None else frame.reading))
     paths = res.track.paths
     outcomes = outcome_counts(paths)
     failures = dict(Counter(p.status for p in paths if p.status in FAILURES))
     retried = dict(Counter(p.retried for p in paths if p.retried))  # paths per kind of retry
-    generic = len(_generic(m)[1])
+    generic = len((start or _generic(m))[1])
     # singular endpoints count as isolated roots of some multiplicity only where they are not on a positive-dimensional
     # set (measured, twenty-fifth session: seed 002's {1, 5}, B1, B5 and G collinear, tracked by this homotopy, ended
     # its 24 paths on its families' circles labelled singular, and the subproblem counted as complete)
-    singular = np.array([s.x for s in res.solutions if s.singular]).reshape(-1, fam.n)
+    singular = back(np.array([s.x for s in res.solutions if s.singular]).reshape(-1, fam.n))
     family = families_of_endpoints(robot, rho, cables, world_coordinates(singular, m, c, L, Rw, cb, robot.load),
                                    TENSION_RTOL * robot.load) if len(singular) else None
     # complete only once the regular endpoints are certified (_with_endpoint_certificates)
     sub = DGPSubproblem(taut1, len(paths), finite, int(np.sum(real)), len(sols), time.perf_counter() - t0,
                         outcomes=outcomes, failures=failures, complete=False, generic_count=generic, retried=retried,
-                        family=family)
-    regular = np.array([s.x for s in res.solutions if not s.singular]).reshape(-1, fam.n)
+                        family=family,
+                        collinear_anchors=None if frame is None else frame.reading)
+    regular = back(np.array([s.x for s in res.solutions if not s.singular]).reshape(-1, fam.n))
     return sub, sols, world_coordinates(regular, m, c, L, Rw, cb, robot.load)
 
 
-def _rescue_last_failed_paths(m, target, res, seed, gamma, options):
+def _rescue_last_failed_paths(m, target, res, seed, gamma, options, start=None):
     """(``res``, the run of ``seed`` and ``gamma``, with its failed paths tracked once more in Study parameters in
     double-double wherever double precision fails, as ``retry_mpmath`` does for every subproblem: at most
     ``MP_RETRY_PATHS``; failed paths left).  For the subproblems that every other step leaves with at most
     ``AUTO_RESCUE_MAX_FAILED`` failed paths, and with ``retry_mpmath`` for every run (:func:`_track`).  Measured (twenty-second session): seed 002's taut set {2, 3, 6, 7},
-    one phase-1 crawl in both routes, complete in 4.7 s instead of incomplete in 1.6 s."""
-    p_gen, X_gen = _generic(m)
+    one phase-1 crawl in both routes, complete in 4.7 s instead of incomplete in 1.6 s.  ``start``: as in
+    :func:`_track`."""
+    p_gen, X_gen = _generic(m) if start is None else start
     opts = replace(default_options() if options is None else options, retry_mpmath=True)
     res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, opts,
                                      failed_in_study=True)
@@ -677,10 +696,10 @@ def _settle_on_other_runs_roots(m, target, res, other, options):
 
 def _with_endpoint_certificates(robot, rho, items) -> list:
     """The subproblems of ``items`` = [(0-based cables, DGPSubproblem, regular endpoints in world coordinates or
-    None)] with their endpoint certificates (one vectorized Krawczyk run per m, :func:`cdpr_algebra.certificates.equilibria.certify_endpoints`)
+    None)] with their endpoint certificates (one vectorized Krawczyk run per m, :func:`cdpr_algebra.certificates.endpoints.certify_endpoints`)
     and ``complete`` decided: no failed path, outcomes adding up to the generic count, and every regular endpoint
     proven a distinct root (its box unique-root, disjoint from the others)."""
-    from cdpr_algebra.certificates.equilibria import certify_endpoints
+    from cdpr_algebra.certificates.endpoints import certify_endpoints
 
     out = [sub for _, sub, _ in items]
     by_m = {}
@@ -690,8 +709,9 @@ def _with_endpoint_certificates(robot, rho, items) -> list:
     for ks in by_m.values():
         # ball arithmetic (slow) only where it can complete a subproblem: not where paths failed
         balls = [items[k][1].failed_paths == 0 for k in ks]
+        readings = [items[k][1].collinear_anchors or BINARY for k in ks]  # the robot read in decimal, or its doubles
         for k, (boxes, over) in zip(ks, certify_endpoints(robot, rho, [(items[k][0], items[k][2]) for k in ks],
-                                                          balls)):
+                                                          balls, readings)):
             sub = items[k][1]
             ok, why = boxes.distinct(over)
             certified = int(ok.sum())
@@ -781,102 +801,3 @@ def dgp(robot, lengths=None, jobs: int | None = None, progress=None, max_m: int 
     subs = tuple(_with_endpoint_certificates(robot, rho, [(c, *results[c][::2]) for c in sets]))
     sols = collected_solutions([s for c in sets for s in results[c][1]], robot.cable_scale)
     return DGPResult(sols, subs, time.perf_counter() - t0, seed, options)
-
-
-def _certified_label(s) -> str:
-    if s.certificate is None:
-        return "-"
-    if s.certified:
-        return "yes" if s.certificate.hessian == "proven" else "yes (H_r undecided)"
-    return "boundary" if "boundary" in s.certificate.tension_signs else "no"
-
-
-def dgp_table(result: DGPResult, n: int) -> str:
-    """Seed 000 Tables 1-3 layout: Conf., m, position of O', angles, tensions, H_r class."""
-    from cdpr_algebra.report.tables import format_table
-
-    headers = ["conf", "m", "x_O'", "y_O'", "z_O'", "phi_x", "phi_y", "phi_z"] + [f"tau_{i + 1}" for i in range(n)] + ["H_r", "certified"]
-    rows = []
-    for k, s in enumerate(result.solutions):
-        rows.append([str(k + 1), str(len(s.taut))] + [f"{v:.3f}" for v in s.position] + [f"{v:.3f}" for v in s.angles]
-                    + [f"{v:.3f}" for v in s.tensions] + [s.hessian, _certified_label(s)])
-    lines = [format_table(headers, rows)] if rows else ["no admissible equilibrium"]
-    for k, s in enumerate(result.solutions):
-        if s.found_by != "homotopy":
-            lines.append(f"  #{k + 1} found by the {s.found_by} solver only (the homotopy's subproblem is incomplete)")
-        if s.certificate is not None and not s.certified:
-            lines.append(f"  #{k + 1} not certified: {s.certificate.reason}")
-        for a in s.alternatives:
-            lines.append(f"  #{k + 1} is also an equilibrium with taut cables {list(a.taut)}: tensions "
-                         + " ".join(f"{v:.3f}" for v in a.tensions) + f", H_r {a.hessian}, certified {_certified_label(a)}")
-    ms = sorted({len(s.taut) for s in result.subproblems})
-    counts = ", ".join(f"{len(result.by_m(m))} with {m} taut" for m in reversed(ms))
-    excluded = [s for s in result.subproblems if s.excluded is not None]
-    skipped = sum(1 for s in result.subproblems if s.skipped) - len(excluded)
-    ncert = sum(1 for s in result.solutions if s.certified)
-    lines.append(f"{len(result.solutions)} admissible equilibria ({counts}), {len(result.stable)} stable, "
-                 f"{ncert} certified; {len(result.subproblems)} subproblems ({skipped} skipped"
-                 + (f", {len(excluded)} not tracked" if excluded else "") + f"); {result.seconds:.2f} s")
-    if excluded:
-        lines.append(f"  not tracked, {len(excluded)} taut set(s) the interval filter proves to hold no admissible "
-                     f"equilibrium (every box of the domain excluded; their inadmissible solutions not counted): "
-                     + ", ".join(str(list(s.taut)) for s in excluded))
-    for s in result.subproblems:
-        for f in s.family.members if s.family is not None else ():
-            method = s.family.method + (", the robot read in decimal" if s.family.reading != BINARY else "")
-            lines.append("  " + f.describe(s.family.fixed, method))
-    for s in result.subproblems:
-        if s.excluded is not None:
-            continue
-        if s.skipped:
-            lines.append(f"  skipped {list(s.taut)}: {s.skipped}")
-        elif not s.complete:
-            lines.append(f"  incomplete {list(s.taut)}: {incompleteness(s)}"
-                         + (f"; admissible set settled by {s.settled}" if s.settled else ""))
-    lines.append(summary_line(result))
-    return "\n".join(lines)
-
-
-def summary_line(result: DGPResult) -> str:
-    """Paths, finite, real, admissible, at infinity, singular, failed over all subproblems, and completeness."""
-    o = result.outcomes()
-    subs = result.subproblems
-    paths = sum(s.paths for s in subs)
-    verdict = "complete" if result.complete else f"INCOMPLETE: {len(result.incomplete)} subproblem(s)"
-    settled = sum(1 for s in result.incomplete if s.settled)
-    if settled:
-        verdict += (f", the admissible equilibria of {settled} of them proven by interval branch and prune"
-                    + ("; every admissible equilibrium known" if result.admissible_complete else ""))
-    cert = sum(s.certified or 0 for s in subs)
-    cert_real = sum(s.certified_real or 0 for s in subs)
-    excluded = sum(1 for s in subs if s.excluded is not None)
-    families = result.families
-    return (f"paths {paths}: {o['regular']} regular, {o['singular']} singular, {o['at_infinity']} at infinity, "
-            f"{o['failed']} failed; {sum(s.finite for s in subs)} finite ({cert} certified distinct roots, "
-            f"{cert_real} of them proven real), {sum(s.real for s in subs)} real, "
-            f"{sum(s.admissible for s in subs)} admissible"
-            + (f" and {len(families)} admissible famil{'y' if len(families) == 1 else 'ies'} of equilibria (not "
-               f"isolated; {sum(f.certified for f in families)} of their listed poses certified)" if families else "")
-            + (f" ({excluded} taut set(s) not tracked: no admissible equilibrium, interval proof)" if excluded else "")
-            + f"; {verdict}")
-
-
-def incompleteness(sub: DGPSubproblem) -> str:
-    """Why a subproblem is not complete, in words (failed paths per reason, uncertified endpoints, counts)."""
-    if sub.skipped:
-        return sub.skipped
-    parts = []
-    if sub.failed_paths:
-        why = ", ".join(f"{v} {k.replace('_', ' ')}" for k, v in sorted(sub.failures.items()))
-        parts.append(f"{sub.failed_paths} of {sub.paths} paths failed ({why})")
-    if sub.uncertified and (sub.family is None or sub.family.method == ROD
-                            or sub.family.endpoints < sum(sub.uncertified.values())):
-        why = "; ".join(f"{v}: {k}" for k, v in sorted(sub.uncertified.items()))
-        parts.append(f"{sum(sub.uncertified.values())} regular endpoint(s) not certified ({why})")
-    if sub.family is not None:  # the certificates refuse points of a positive-dimensional set: its account says why
-        parts.append(sub.family.describe())
-    if sub.certified is None and sub.paths:
-        parts.append("endpoints not certified")
-    if sub.generic_count is not None and sum(sub.outcomes.values()) != sub.generic_count:
-        parts.append(f"outcomes add up to {sum(sub.outcomes.values())}, not the generic count {sub.generic_count}")
-    return "; ".join(parts) or "not complete"
