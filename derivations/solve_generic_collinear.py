@@ -61,7 +61,8 @@ from cdpr_algebra.homotopy.trace_test import distinct_points, verify_solution_co
 from cdpr_algebra.model.taut_equations import encode, taut_family  # noqa: E402
 from certify_generic_dgp import POSE, _move_stored, trace_options  # noqa: E402
 from solve_generic_dgp import complex_rotation  # noqa: E402
-from solve_generic_rod import trace_record  # noqa: E402
+from solve_generic_rod import (extra_loop_check, monodromy_arguments, phc_agrees,  # noqa: E402
+                              store_if_certified, trace_record)
 
 
 def regular_collinear_robot(m: int) -> np.ndarray:
@@ -108,15 +109,7 @@ def solve_generic(m: int, seed: int = 1, no_progress: int = 8, extra: int = 3, n
                                                    fixed_parameters=fixed))
     if verbose:
         print(f"m = {m}: {res.summary_line()}", flush=True)
-    check = monodromy_solve(fam, parameters=res.parameters, solutions=res.solutions, seed=seed + 1000,
-                            options=MonodromyOptions(max_loops_no_progress=extra, initial_loops=extra,
-                                                     max_loops=extra, fixed_parameters=fixed))
-    new = len(check.solutions) - len(res.solutions)
-    X = check.solutions
-    distinct = len(distinct_points(fam, res.parameters, X)[0])
-    if verbose:
-        print(f"m = {m}: check with {check.loops} extra loops ({check.paths_tracked} paths): {new} new; "
-              f"{distinct} distinct of {len(X)}", flush=True)
+    check, X, new, distinct = extra_loop_check(fam, res, m, seed, extra, fixed, verbose)
     F, J = fam.evaluate_and_jacobian(X, res.parameters)
     meta = {"m": m, "subfamily": "platform anchors on the x axis: b'_iy = b'_iz = 0 (fixed_parameters)",
             "fixed_parameters": [int(k) for k in fixed], "monodromy": res.to_dict(),
@@ -186,17 +179,12 @@ def record_phc(m: int, seed: int) -> int:
     if "phc" in meta:  # PHCpack's blackbox is randomized (its gamma): every run is kept, the last one as "phc"
         meta["phc_history"] = meta.get("phc_history", []) + [meta["phc"]]
     save_instance(collinear_path(m), taut_family(m), p0, X0, **{**meta, "phc": rec})
-    agree = rec.get("status") == "finished" and rec["phc_distinct"] == rec["stored_matched"] == rec["phc_matched"] \
-        == rec["stored_moved_distinct"] == len(X0)
-    return 0 if agree else 1
+    return 0 if phc_agrees(rec, len(X0)) else 1
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--m", type=int, nargs="+", default=list(COLLINEAR_M), choices=COLLINEAR_M)
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--no-progress", type=int, default=8, help="monodromy loops in a row that add nothing")
-    ap.add_argument("--extra", type=int, default=3, help="extra monodromy loops that must find nothing new")
+    monodromy_arguments(ap, COLLINEAR_M)
     ap.add_argument("--noise", type=float, default=0.3, help="relative complex noise of the start point")
     ap.add_argument("--base", choices=("regular", "random"), default="regular",
                     help="the start point: regular_collinear_robot or random_collinear_robot, plus noise")
@@ -211,15 +199,8 @@ def main(argv=None) -> int:
         params, X, meta = solve_generic(m, seed=args.seed, no_progress=args.no_progress, extra=args.extra,
                                         noise=args.noise, chart=args.chart,
                                         base=args.base)
-        ok = (meta["check"]["new_solutions"] == 0 and meta["distinct"] == len(X)
-              and meta["trace_test"]["status"] == "passed")
-        print(f"m = {m}: {len(X)} solutions, residual {meta['max_residual']:.1e}, max cond "
-              f"{meta['max_jacobian_condition']:.1e}, max norm {meta['max_norm']:.1e}, {meta['seconds']:.1f} s: "
-              f"{'stored' if ok else 'NOT stored'}", flush=True)
-        if ok:
-            save_instance(collinear_path(m), taut_family(m), params, X, **meta)
-        else:
-            status = 1
+        print(f"m = {m}: largest solution norm {meta['max_norm']:.1e}", flush=True)
+        status = max(status, store_if_certified(collinear_path(m), taut_family(m), params, X, meta))
     return status
 
 

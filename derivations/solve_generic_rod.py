@@ -87,15 +87,7 @@ def solve_generic(m: int, seed: int = 1, no_progress: int = 8, extra: int = 3, v
                           options=MonodromyOptions(max_loops_no_progress=no_progress, max_loops=120))
     if verbose:
         print(f"m = {m}: {res.summary_line()}", flush=True)
-    check = monodromy_solve(fam, parameters=res.parameters, solutions=res.solutions, seed=seed + 1000,
-                            options=MonodromyOptions(max_loops_no_progress=extra, initial_loops=extra,
-                                                     max_loops=extra))
-    new = len(check.solutions) - len(res.solutions)
-    X = check.solutions
-    distinct = len(distinct_points(fam, res.parameters, X)[0])
-    if verbose:
-        print(f"m = {m}: check with {check.loops} extra loops ({check.paths_tracked} paths): {new} new; "
-              f"{distinct} distinct of {len(X)}", flush=True)
+    check, X, new, distinct = extra_loop_check(fam, res, m, seed, extra, verbose=verbose)
     F, J = fam.evaluate_and_jacobian(X, res.parameters)
     meta = {"m": m, "monodromy": res.to_dict(),
             "check": {"extra_loops": check.loops, "paths_tracked": check.paths_tracked, "new_solutions": new,
@@ -112,6 +104,21 @@ def solve_generic(m: int, seed: int = 1, no_progress: int = 8, extra: int = 3, v
         print(f"m = {m}: trace test {tr.trace.status} ({len(tr.W10)} witness points, "
               f"{meta['trace_test']['seconds']:.1f} s): {tr.trace.to_dict()}", flush=True)
     return res.parameters, X, meta
+
+
+def extra_loop_check(fam, res, m: int, seed: int, extra: int, fixed=(), verbose: bool = True):
+    """``extra`` more monodromy loops from the set of ``res`` with every known solution tracked around each (inside
+    the subfamily of ``fixed`` parameters): (the run, its solutions, new ones, distinct ones)."""
+    check = monodromy_solve(fam, parameters=res.parameters, solutions=res.solutions, seed=seed + 1000,
+                            options=MonodromyOptions(max_loops_no_progress=extra, initial_loops=extra,
+                                                     max_loops=extra, fixed_parameters=tuple(fixed)))
+    new = len(check.solutions) - len(res.solutions)
+    X = check.solutions
+    distinct = len(distinct_points(fam, res.parameters, X)[0])
+    if verbose:
+        print(f"m = {m}: check with {check.loops} extra loops ({check.paths_tracked} paths): {new} new; "
+              f"{distinct} distinct of {len(X)}", flush=True)
+    return check, X, new, distinct
 
 
 def trace_record(tr, count: int, seed: int, chart, seconds: float) -> dict:
@@ -188,17 +195,27 @@ def record_phc(m: int, seed: int) -> int:
     p0, X0, data = load_instance(path_for(m), rod_family(m))
     rec = run_phc(m, seed)
     save_instance(path_for(m), rod_family(m), p0, X0, **{**data["meta"], "phc": rec})
-    agree = rec.get("status") == "finished" and rec["phc_distinct"] == rec["stored_matched"] == rec["phc_matched"] \
-        == rec["stored_moved_distinct"] == len(X0)
-    return 0 if agree else 1
+    return 0 if phc_agrees(rec, len(X0)) else 1
+
+
+def phc_agrees(rec: dict, count: int) -> bool:
+    """Whether a PHCpack record (``run_phc``) found exactly the ``count`` stored solutions, matched both ways."""
+    return rec.get("status") == "finished" and rec["phc_distinct"] == rec["stored_matched"] == rec["phc_matched"] \
+        == rec["stored_moved_distinct"] == count
+
+
+def monodromy_arguments(ap, ms) -> None:
+    """The options every generic-set script shares: ``--m`` (choices ``ms``), ``--seed``, ``--no-progress``,
+    ``--extra``."""
+    ap.add_argument("--m", type=int, nargs="+", default=list(ms), choices=ms)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--no-progress", type=int, default=8, help="monodromy loops in a row that add nothing")
+    ap.add_argument("--extra", type=int, default=3, help="extra monodromy loops that must find nothing new")
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--m", type=int, nargs="+", default=list(ROD_M), choices=ROD_M)
-    ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--no-progress", type=int, default=8, help="monodromy loops in a row that add nothing")
-    ap.add_argument("--extra", type=int, default=3, help="extra monodromy loops that must find nothing new")
+    monodromy_arguments(ap, ROD_M)
     ap.add_argument("--chart", type=int, default=None, metavar="SEED",
                     help="find the trace test's witness points on a random chart of projective space (points of "
                          "very large norm are ordinary there)")
@@ -214,16 +231,21 @@ def main(argv=None) -> int:
     for m in args.m:
         params, X, meta = solve_generic(m, seed=args.seed, no_progress=args.no_progress, extra=args.extra,
                                         chart=args.chart)
-        ok = (meta["check"]["new_solutions"] == 0 and meta["distinct"] == len(X)
-              and meta["trace_test"]["status"] == "passed")
-        print(f"m = {m}: {len(X)} solutions, residual {meta['max_residual']:.1e}, max cond "
-              f"{meta['max_jacobian_condition']:.1e}, {meta['seconds']:.1f} s: {'stored' if ok else 'NOT stored'}",
-              flush=True)
-        if ok:
-            save_instance(path_for(m), rod_family(m), params, X, **meta)
-        else:
-            status = 1
+        status = max(status, store_if_certified(path_for(m), rod_family(m), params, X, meta))
     return status
+
+
+def store_if_certified(path, system, params, X, meta) -> int:
+    """Store the set (``save_instance``) when the extra loops found nothing new, its points are distinct and its
+    trace test passed; print the verdict; exit status 0 when stored."""
+    ok = (meta["check"]["new_solutions"] == 0 and meta["distinct"] == len(X)
+          and meta["trace_test"]["status"] == "passed")
+    print(f"m = {meta['m']}: {len(X)} solutions, residual {meta['max_residual']:.1e}, max cond "
+          f"{meta['max_jacobian_condition']:.1e}, {meta['seconds']:.1f} s: {'stored' if ok else 'NOT stored'}",
+          flush=True)
+    if ok:
+        save_instance(path, system, params, X, **meta)
+    return 0 if ok else 1
 
 
 if __name__ == "__main__":
