@@ -222,19 +222,20 @@ def test_cli_json_contract(tmp_path, capsys):
         assert set(sub) == {"taut", "status", "paths", "outcomes", "failures", "complete", "generic_count", "finite",
                             "real", "admissible", "failed_paths", "seconds", "skipped", "certified", "certified_real",
                             "uncertified", "settled", "admissible_complete", "excluded", "retried",
-                            "positive_dimensional"}
-        assert sub["status"] == "complete"
+                            "positive_dimensional", "collinear_anchors"}
+        assert sub["status"] == "complete" and sub["collinear_anchors"] is None
         assert sum(sub["outcomes"].values()) == sub["paths"] == sub["generic_count"] and sub["complete"]
         assert sub["certified"] in (None, sub["outcomes"]["regular"]) and sub["uncertified"] == {}
     assert out["outcomes"] == {k: sum(s["outcomes"][k] for s in out["subproblems"]) for k in out["outcomes"]}
     keys = {"taut", "position", "angles", "rotation", "tensions", "hessian", "stable", "certified", "certificate",
-            "alternatives", "found_by"}
+            "alternatives", "found_by", "reading"}
     assert out["solutions"]
     for sol in out["solutions"]:
         assert set(sol) == keys
         assert len(sol["tensions"]) == 2 and np.array(sol["rotation"]).shape == (3, 3)
         assert sol["hessian"] in (">", ">=", "<", "<=", "<>") and isinstance(sol["certified"], bool)
         assert sol["alternatives"] == []  # two cables: no pose is held by two taut sets
+        assert sol["reading"] == "binary"
         cert = sol["certificate"]
         assert {"box_width", "tension_lower", "tension_upper", "hessian"} <= set(cert)
         assert cert["hessian"] in ("proven", "undecided") and len(cert["tension_lower"]) == 2
