@@ -30,24 +30,28 @@ from .equilibria import (BOX_RTOL, FLINT, Certificate, _consequences, _failed, _
 from cdpr_algebra.model.rod_equations import BINARY, exact_rational
 from cdpr_algebra.model.taut_equations import encode, to_cable_frame
 
-__all__ = ["certify_turning_equilibrium", "collinear_exactly"]
+__all__ = ["certify_turning_equilibrium", "collinear_exactly", "exact_line"]
 
 
 def collinear_exactly(points, reading: str = BINARY) -> bool:
     """Whether the 3-vectors ``points`` (doubles) lie on one line, in exact rational arithmetic on their binary values
     or, with ``reading`` DECIMAL, on the decimals that print them
     (:func:`cdpr_algebra.model.rod_equations.exact_rational`)."""
+    return exact_line(points, reading) is not None
+
+
+def exact_line(points, reading: str = BINARY):
+    """(P, d) when the ``points`` lie on one line in ``reading`` (see :func:`collinear_exactly`): P the points as
+    exact fractions, d = (the point farthest from P[0]) - P[0] (all zero when every point is at P[0]); else None."""
     P = [[exact_rational(v, reading) for v in p] for p in points]
     o = P[0]
     far = max(P, key=lambda q: sum((q[k] - o[k]) ** 2 for k in range(3)))
     d = [far[k] - o[k] for k in range(3)]
-    if not any(d):
-        return True
-    for q in P:
+    for q in P if any(d) else ():
         w = [q[k] - o[k] for k in range(3)]
         if any(d[(k + 1) % 3] * w[(k + 2) % 3] - d[(k + 2) % 3] * w[(k + 1) % 3] for k in range(3)):
-            return False
-    return True
+            return None
+    return P, d
 
 
 def certify_turning_equilibrium(robot, lengths, cables, position, rotation, tensions,

@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from cdpr_algebra.model.pose import rotation_taking
-from cdpr_algebra.model.rod_equations import BINARY, DECIMAL, exact_rational
+from cdpr_algebra.model.rod_equations import BINARY, DECIMAL
 
 __all__ = ["COLLINEAR_M", "LineFrame", "collinear_path", "fixed_parameters", "line_frame", "collinear_start"]
 
@@ -101,7 +101,7 @@ def line_frame(robot, cables) -> LineFrame | None:
     their platform anchors are collinear and not all at one point, exactly in the robot's doubles (BINARY) or else
     in the decimals that print them (DECIMAL), and the centre of mass is off their line in that reading (on it,
     the taut set is a rod: :mod:`.rod`); else None."""
-    from cdpr_algebra.certificates.families import collinear_exactly
+    from cdpr_algebra.certificates.families import collinear_exactly, exact_line
 
     idx = [int(c) for c in cables]
     if len(idx) not in COLLINEAR_M or not collinear_path(len(idx)).exists():
@@ -112,10 +112,9 @@ def line_frame(robot, cables) -> LineFrame | None:
     if np.max(np.abs(np.cross(arms, far))) > 1e-9 * (np.max(np.abs(points)) + 1e-300) ** 2:
         return None  # plainly off one line in every reading (the exact tests below cost a millisecond)
     for reading in (BINARY, DECIMAL):
-        if collinear_exactly(points, reading) and not collinear_exactly(points + [robot.com], reading):
-            P = [[exact_rational(v, reading) for v in q] for q in points]
-            far = max(P, key=lambda q: sum((q[k] - P[0][k]) ** 2 for k in range(3)))
-            d = [far[k] - P[0][k] for k in range(3)]
+        line = exact_line(points, reading)
+        if line is not None and not collinear_exactly(points + [robot.com], reading):
+            P, d = line
             norm = float(sum(c * c for c in d)) ** 0.5
             if norm == 0:
                 return None
