@@ -2,7 +2,10 @@
 mirror planes).  Its taut set {1, 2, 3, 4} has paths whose tension multipliers and translation grow together as
 t -> 0; they were counted ``endgame_failed`` by the rule meant for tensions growing at a finite pose (a wrench matrix
 exactly singular there, which double precision cannot tell from a near-double pair of finite roots with huge
-tensions, ``tests/large_forces.py``).  Now a path whose pose block grows too stays at infinity.
+tensions, ``tests/large_forces.py``).  Now a path whose pose block grows too stays at infinity.  Since the
+twenty-eighth session the Study run decides them itself: its double-double Cauchy endgame shows the translation and
+tensions (g, lam) unbounded at the limit (:func:`cdpr_algebra.homotopy.endgame.block_at_infinity`), and their last
+samples, mapped back, are the endpoints tested below.
 
 Independent check of those verdicts: at infinity the taut equations reduce to their leading terms in p = p^ / s,
 lam = lam^ / s (s -> 0): the cable lengths |A_i - p - R b_i|^2 = rho_i^2 leave p^ . p^ = 0 (the translation runs off
@@ -36,6 +39,7 @@ def test_paths_whose_translation_grows_with_the_tensions_stay_at_infinity():
             and np.max(np.abs(p.endpoint[16 - 4:])) > np.max(np.abs(p.endpoint[:12]))]
     assert len(grow) >= 20, counts
     for p in grow:
+        assert p.retried == "precise_endgame" and p.order * p.winding_number >= 0.5  # h ~ t^v, v c >= 1/2
         x = p.endpoint
         pos, lam = x[:3], x[12:]
         assert p.valuation(slice(0, 12)) * p.winding_number <= -POSE_DIVERGES
@@ -66,15 +70,30 @@ def test_tensions_growing_at_a_finite_pose_stay_undecided():
     assert _outcome(_at_infinity(10.0, 14.0)) == "endgame_failed"  # -0.24: not a power k / c, k >= 1
 
 
-def test_a_route_from_another_generic_instance_completes_the_symmetric_robot():
-    """The same taut set: one path of both gamma routes from the stored generic instance crawls at t ~ 0.25 next to
-    Study's exceptional set and fails, in Study parameters, in the taut system and in double-double alike; its root
-    (well conditioned, |x| ~ 15; PHCpack's blackbox finds it too, measured) is reached by the run from another generic
-    instance (dgp.other_start), whose regular roots settle the failed path.  The account: 184 regular roots, every
-    one proven in a Krawczyk box, and 32 paths at infinity make the generic count 216."""
+def test_the_symmetric_robot_is_complete():
+    """The same taut set by the DGP: 184 regular roots, every one proven in a Krawczyk box, and 32 paths at infinity
+    (decided in Study parameters, the (g, lam) block unbounded) make the generic count 216."""
     robot = load_robot(ROOT / "examples" / "symmetric_4cables.toml")
     sub, sols = S.solve_taut_set(robot, robot.lengths, (0, 1, 2, 3))
     assert sub.outcomes == {"regular": 184, "singular": 0, "at_infinity": 32, "failed": 0}, sub.outcomes
     assert sub.complete and sub.certified == sub.finite == 184
-    assert sub.retried.get("unheld_root", 0) >= 1  # the settled path
     assert len(sols) == 2 and all(s.certified for s in sols)
+
+
+def test_a_route_from_another_generic_instance_settles_the_crawling_path():
+    """One path of the first route (seed 0, no gamma) crawls at t ~ 0.25 next to Study's exceptional set and fails,
+    in Study parameters, in the taut system and in double-double alike; its root (well conditioned, |x| ~ 15;
+    PHCpack's blackbox finds it too, measured) is reached by the run from another generic instance
+    (dgp.other_start), whose regular roots settle the failed path (the DGP itself now completes the set by the
+    gamma route first, twenty-eighth session)."""
+    from cdpr_algebra.dgp.other_start import other_generic_instance
+
+    robot = load_robot(ROOT / "examples" / "symmetric_4cables.toml")
+    rho, _ = lengths_and_taut_sets(robot)
+    target = normalized_problem(robot, rho, (0, 1, 2, 3))[0]
+    res, failed = S._track(4, target, 0, False)
+    assert failed == 1
+    other = other_generic_instance(lambda p, s: S._track(4, p, s, True)[0], *S._generic(4))
+    settled, left = S._settle_on_other_runs_roots(4, target, res, S._track(4, target, 0, True, None, other)[0], None)
+    assert left == 0 and sum(p.retried == "unheld_root" for p in settled.track.paths) == 1
+    assert len(settled.solutions) == len(res.solutions) + 1

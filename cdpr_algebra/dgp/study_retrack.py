@@ -247,9 +247,12 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
     fails, with the corrector floor ``PRECISE_FLOOR``).  A path whose Cauchy estimates converge (``cauchy_tol``) is
     decided as the double endgame decides: ``at_infinity`` when N = e . e of the limit vanishes to its accuracy and
     N(t) ~ t^v (v > 0) at the last two radii (:func:`cdpr_algebra.homotopy.endgame.decide_in_chart` on
-    ``FastStudySystem.infinity_coordinate``), a finite limit on one sheet (winding number 1) is returned as the
-    path's endpoint for the caller's Newton test (``success``); the others keep their outcome.  Returns the paths
-    (``retried = "precise_endgame"`` where decided).
+    ``FastStudySystem.infinity_coordinate``), and also ``at_infinity`` when its translation and tensions (g, lam,
+    affine in the Study system) are unbounded there (:func:`cdpr_algebra.homotopy.endgame.block_at_infinity`: the
+    Cauchy means converge on such paths too, to a Puiseux constant term); a finite limit on one sheet (winding
+    number 1) is returned as the path's endpoint for the caller's Newton test (``success``), one on c >= 2 sheets
+    whose (g, lam) stay bounded as ``singular`` (winding number c) for the caller's residual test; the others keep
+    their outcome.  Returns the paths (``retried = "precise_endgame"`` where decided).
 
     Why.  Measured (twenty-first session) on seed 002's 8-cable robot: its failed Study paths near t ~ 1e-4 .. 1e-5
     are ill-conditioned pairs (winding number 2) whose double-precision loops fail before two estimates agree; in
@@ -269,12 +272,18 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
     bad = [j for j, q in enumerate(spaths) if q.status in FAILURES and abs(q.t) <= te][:PRECISE_ENDGAME_PATHS]
     if not bad:  # nothing to load (the double-double kernels cost ~8 MiB)
         return spaths
-    from cdpr_algebra.homotopy.endgame import decide_in_chart
+    from cdpr_algebra.homotopy.endgame import block_at_infinity, decide_in_chart
     from cdpr_algebra.homotopy.hybrid_tracker import hybrid_track
     from cdpr_algebra.homotopy.precise_endgame import precise_cauchy_endgame
 
     hom, precise = _study_homotopy_and_twin(m, P1, P0, seed, gamma, corrector_floor=PRECISE_FLOOR)
     left = PRECISE_ENDGAME_BUDGET
+    block = slice(4, 8 + m)  # g and lam, affine in the Study system
+
+    def settled(loop, loop_prev, turns):  # (g, lam) unbounded or steady at the limit: not still growing
+        moved, bounded, _ = block_at_infinity(loop, loop_prev, block, turns, eo)
+        return moved or bounded
+
     for j in bad:
         if left <= 0:
             break
@@ -286,11 +295,21 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
             spaths[j] = replace(spaths[j], steps=steps)
             continue
         lim = precise_cauchy_endgame(hom, precise, seg.x, te, eo, tr,
-                                     max_precise_steps=min(PRECISE_ENDGAME_STEPS - seg.precise_steps, left))
+                                     max_precise_steps=min(PRECISE_ENDGAME_STEPS - seg.precise_steps, left),
+                                     settled=settled)
         left -= lim.precise_steps
         steps += lim.steps
         spaths[j] = replace(spaths[j], steps=steps)
         if not lim.converged:
+            continue
+        # the translation and tensions (g, lam: affine in the Study system) unbounded at the limit: at infinity,
+        # whatever N; the loops' mean is then their Puiseux constant term, no limit (block_at_infinity)
+        moved, bounded, v = block_at_infinity(lim.loop, lim.loop_prev, block, lim.winding, eo)
+        if moved:  # its last two samples kept (PathResult.valuation), the limit being no point
+            spaths[j] = replace(spaths[j], status=AT_INFINITY, endpoint=lim.xlast, t=complex(lim.t),
+                                accuracy=lim.accuracy, winding_number=lim.winding, order=v, retried=PRECISE_ENDGAME,
+                                previous=lim.xprev,
+                                previous_t=complex(lim.t / eo.sample_ratio))
             continue
         inf, undecided, order = decide_in_chart(lim.x[None], np.array([lim.accuracy]), lim.xlast[None],
                                                 lim.xprev[None], eo, FastStudySystem.infinity_coordinate,
@@ -301,6 +320,9 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
         elif not undecided[0] and lim.winding == 1:
             spaths[j] = replace(spaths[j], status=SUCCESS, endpoint=lim.x, t=0j, accuracy=lim.accuracy,
                                 winding_number=1, retried=PRECISE_ENDGAME)
+        elif not undecided[0] and bounded:  # a finite pose, met by c sheets: a singular root (the caller tests it)
+            spaths[j] = replace(spaths[j], status=SINGULAR, endpoint=lim.x, t=0j, accuracy=lim.accuracy,
+                                winding_number=lim.winding, retried=PRECISE_ENDGAME)
     return spaths
 
 
@@ -360,9 +382,12 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     in Study coordinates} for the paths that the Study run left failed or whose endpoint the tests above refused
     (:func:`study_roots` starts from them)."""
     from cdpr_algebra.homotopy.clusters import coincides_with_any
-    from cdpr_algebra.homotopy.refinement import refine
+    from cdpr_algebra.homotopy.refinement import refine, relative_residual
     from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
     from cdpr_algebra.homotopy.solve import group_solutions, solve_parameter_homotopy
+
+    def bound_s(x):
+        return residual_bound(x[None], RESIDUAL_TOL)[0]
 
     paths = list(res.track.paths)
     failed = [i for i, p in enumerate(paths) if p.status in FAILURES]
@@ -412,11 +437,35 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
         regular.append(x)
         rescued += 1
         done.add(j)
-    for j, q in enumerate(spaths):  # limits on N = 0: the pose is at infinity (FastStudySystem.infinity_coordinate)
-        if q.status == AT_INFINITY:
+    sing = [j for j, q in enumerate(spaths) if q.status == SINGULAR and q.retried == PRECISE_ENDGAME]
+    if sing:  # finite limits of c >= 2 sheets: singular roots, kept where they solve the taut system
+        with np.errstate(all="ignore"):
+            XS = from_study(np.array([spaths[j].endpoint for j in sing]), m)
+            F, _ = system.evaluate_and_jacobian(XS, target)
+            rs = relative_residual(F, XS)
+        for k, j in enumerate(sing):
+            if not (np.all(np.isfinite(XS[k])) and rs[k] <= max(opts.endgame.finite_residual, bound_s(XS[k]))):
+                continue
+            if coincides_with_any(regular, XS[k], opts.endgame.cluster_tol):  # c sheets meet on no regular root
+                continue
             i = failed[j]
+            q = spaths[j]
+            paths[i] = replace(paths[i], status=SINGULAR, endpoint=XS[k], t=0j, residual=float(rs[k]),
+                               condition=float("inf"), accuracy=q.accuracy, steps=paths[i].steps + q.steps,
+                               winding_number=q.winding_number, retried=PRECISE_ENDGAME)
+            rescued += 1
+            done.add(j)
+    for j, q in enumerate(spaths):  # limits on N = 0: the pose is at infinity (FastStudySystem.infinity_coordinate)
+        if q.status == AT_INFINITY:  # or (g, lam) unbounded (_precise_endgames): its last samples, mapped back
+            i = failed[j]
+            last = {}
+            if q.previous is not None and q.retried == PRECISE_ENDGAME:
+                with np.errstate(all="ignore"):
+                    Z = from_study(np.array([q.endpoint, q.previous]), m)
+                if np.all(np.isfinite(Z)):
+                    last = dict(endpoint=Z[0], t=q.t, previous=Z[1], previous_t=q.previous_t)
             paths[i] = replace(paths[i], status=AT_INFINITY, steps=paths[i].steps + q.steps,  # its last point kept
-                               winding_number=q.winding_number, order=q.order, retried=q.retried or "study")
+                               winding_number=q.winding_number, order=q.order, retried=q.retried or "study", **last)
             rescued += 1
             done.add(j)
     for j, q in enumerate(spaths):  # the others keep their outcome; their steps include the Study run's

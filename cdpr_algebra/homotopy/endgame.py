@@ -47,7 +47,8 @@ from .results import (AT_INFINITY, DIVERGED, ENDGAME_FAILED, FAILURES, SINGULAR,
                       TOO_MANY_STEPS, PathResult, TrackResult)
 from .tracker import TrackerOptions, _norm, track_segment
 
-__all__ = ["EndgameOptions", "SolveOptions", "run_pipeline", "refine", "cauchy_endgame", "decide_in_chart", "mp_track",
+__all__ = ["EndgameOptions", "SolveOptions", "run_pipeline", "refine", "cauchy_endgame", "decide_in_chart",
+           "block_at_infinity", "mp_track",
            "mp_path", "track_paths"]
 
 
@@ -382,6 +383,51 @@ def decide_in_chart(Y, accuracy, ylast=None, yprev=None, o: EndgameOptions = End
             shown &= v * np.asarray(winding, dtype=float) >= o.min_order_winding
     order[zero & shown] = v[zero & shown]
     return zero & shown, zero & ~shown, order
+
+
+def block_at_infinity(loop, loop_prev, cols, winding: int, o: EndgameOptions = EndgameOptions(),
+                      seed: int = 0) -> tuple[bool, bool, float]:
+    """(at infinity, finite, order v): whether the affine coordinates ``cols`` of a path are unbounded at its limit
+    (or bounded: ``finite``; neither where undecided), from the
+    samples (rows) of its last two Cauchy loops: ``loop`` at the radius r, ``loop_prev`` at r / ``sample_ratio``, c =
+    ``winding`` turns each (:class:`.precise_endgame.PreciseLimit`).
+
+    The block's homogenizing coordinate on a random chart, h = 1 / (a0 + a . y) (a random complex, fixed by
+    ``seed``), is analytic in s = t^(1/c) at a limit where the block diverges, and vanishes there; its value at
+    s = 0 is the mean of its samples on the loop (Cauchy's integral formula: the endgame's trapezoid rule in s).
+    At infinity when |mean h| <= ``infinity_margin`` x ``cauchy_tol`` (at least 1e-14) x the mean of |h| on the
+    loop (the accuracy to which the endgame's estimates agree), |mean h| <= ``infinity_margin`` x its change from
+    the previous loop (or is at the samples' rounding, 1e-14 of |h|), and the loops show |h| ~ t^v with v >=
+    ``min_order`` and v c >= ``min_order_winding`` (as :func:`decide_in_chart` decides y0).  A finite limit y* has mean h ~ h(0) = 1 / (a0 + a . y*), as large as the samples themselves: never at
+    infinity, however large y*: ``finite`` where |mean h| exceeds that bound and |h| is steady between the two
+    radii (|v| < ``min_order``: a block still growing there has not reached the regime where its Puiseux series
+    converges on the loop, h may have poles inside it and its mean is no value of h).
+
+    Why.  The loop means of a diverging block converge too, to the constant term of its Puiseux series (the
+    negative powers of s average to zero over a loop), so agreeing Cauchy estimates do not show a finite limit.
+    Measured (twenty-eighth session): 3-cable robots whose platform triangle is similar to the base triangle (an
+    equilateral base and platform) have Study paths whose translation and tensions grow like t^(-1/2) while the
+    rotation converges (isotropic translations); their double-double loops agreed to 1e-10 .. 1e-12 on the constant
+    term, N / |e|^2 ~ 0.02 showed no rotation at infinity, and the paths were left failed."""
+    if loop is None or loop_prev is None:
+        return False, False, float("nan")
+    rng = np.random.default_rng(seed)
+    Y, P = np.asarray(loop)[:, cols], np.asarray(loop_prev)[:, cols]
+    a = (rng.normal(size=Y.shape[1] + 1) + 1j * rng.normal(size=Y.shape[1] + 1)) / np.sqrt(2 * (Y.shape[1] + 1))
+    with np.errstate(all="ignore"):
+        h, hp = 1.0 / (a[0] + Y @ a[1:]), 1.0 / (a[0] + P @ a[1:])
+        if not (np.all(np.isfinite(h)) and np.all(np.isfinite(hp))):
+            return False, False, float("nan")
+        size, mean = np.mean(np.abs(h)), abs(h.mean())
+        # small against the loop's values, and no steady value: a mean that the previous loop repeats is h(0) != 0
+        # (measured: a root with tensions 1e5 times the load, reached by two paths circling a near-double root,
+        # |mean h| = 2.07e-11 on both loops, 1.3e-9 of |h|), unless it is at the rounding of the samples
+        zero = mean <= o.infinity_margin * max(o.cauchy_tol, 1e-14) * size and (
+            mean <= o.infinity_margin * abs(h.mean() - hp.mean()) or mean <= 1e-14 * size)
+        v = float(np.log(size / np.mean(np.abs(hp))) / np.log(o.sample_ratio))
+    shown = np.isfinite(v) and v >= o.min_order and v * winding >= o.min_order_winding
+    steady = np.isfinite(v) and abs(v) < o.min_order  # h(t) ~ h(0): the loops are in the limit's neighbourhood
+    return bool(zero and shown), bool(not zero and steady), (v if zero and shown else float("nan"))
 
 
 # ---------------------------------------------------------------------------------------------
