@@ -280,9 +280,23 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
     left = PRECISE_ENDGAME_BUDGET
     block = slice(4, 8 + m)  # g and lam, affine in the Study system
 
-    def settled(loop, loop_prev, turns):  # (g, lam) unbounded or steady at the limit: not still growing
-        moved, bounded, _ = block_at_infinity(loop, loop_prev, block, turns, eo)
-        return moved or bounded
+    def verdict(loop, loop_prev, turns):
+        """(status, order) of a limit from its last two loops (their means agreed), or None: sample on.  The
+        translation and tensions (g, lam) unbounded: at infinity whatever N, the loops' mean being their Puiseux
+        constant term, no limit (block_at_infinity); N = 0 with N(t) ~ t^v: at infinity (decide_in_chart); a
+        finite pose with (g, lam) steady: success on one sheet (for the caller's Newton test), else singular."""
+        moved, bounded, v = block_at_infinity(loop, loop_prev, block, turns, eo)
+        if moved:
+            return BLOCK_AT_INFINITY, v
+        est, est_prev = loop.mean(axis=0), loop_prev.mean(axis=0)
+        acc = float(np.linalg.norm(est - est_prev) / (1.0 + np.linalg.norm(est)))
+        inf, undecided, order = decide_in_chart(est[None], np.array([acc]), loop[:1], loop_prev[:1], eo,
+                                                FastStudySystem.infinity_coordinate, [turns])
+        if inf[0]:
+            return AT_INFINITY, float(order[0])
+        if undecided[0] or not bounded:
+            return None
+        return (SUCCESS if turns == 1 else SINGULAR), float("nan")
 
     for j in bad:
         if left <= 0:
@@ -296,37 +310,26 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
             continue
         lim = precise_cauchy_endgame(hom, precise, seg.x, te, eo, tr,
                                      max_precise_steps=min(PRECISE_ENDGAME_STEPS - seg.precise_steps, left),
-                                     settled=settled)
+                                     settled=lambda *loops: verdict(*loops) is not None)
         left -= lim.precise_steps
         steps += lim.steps
         spaths[j] = replace(spaths[j], steps=steps)
         if not lim.converged:
             continue
-        # the translation and tensions (g, lam: affine in the Study system) unbounded at the limit: at infinity,
-        # whatever N; the loops' mean is then their Puiseux constant term, no limit (block_at_infinity)
-        moved, bounded, v = block_at_infinity(lim.loop, lim.loop_prev, block, lim.winding, eo)
-        if moved:  # its last two samples kept (PathResult.valuation), the limit being no point
-            spaths[j] = replace(spaths[j], status=AT_INFINITY, endpoint=lim.xlast, t=complex(lim.t),
-                                accuracy=lim.accuracy, winding_number=lim.winding, order=v, retried=PRECISE_ENDGAME,
-                                previous=lim.xprev,
-                                previous_t=complex(lim.t / eo.sample_ratio))
-            continue
-        inf, undecided, order = decide_in_chart(lim.x[None], np.array([lim.accuracy]), lim.xlast[None],
-                                                lim.xprev[None], eo, FastStudySystem.infinity_coordinate,
-                                                [lim.winding])
-        if inf[0]:
-            spaths[j] = replace(spaths[j], status=AT_INFINITY, endpoint=lim.x, t=0j, accuracy=lim.accuracy,
-                                winding_number=lim.winding, order=float(order[0]), retried=PRECISE_ENDGAME)
-        elif not undecided[0] and lim.winding == 1:
-            spaths[j] = replace(spaths[j], status=SUCCESS, endpoint=lim.x, t=0j, accuracy=lim.accuracy,
-                                winding_number=1, retried=PRECISE_ENDGAME)
-        elif not undecided[0] and bounded:  # a finite pose, met by c sheets: a singular root (the caller tests it)
-            spaths[j] = replace(spaths[j], status=SINGULAR, endpoint=lim.x, t=0j, accuracy=lim.accuracy,
-                                winding_number=lim.winding, retried=PRECISE_ENDGAME)
+        status, v = verdict(lim.loop, lim.loop_prev, lim.winding)
+        common = dict(t=0j, accuracy=lim.accuracy, winding_number=lim.winding, retried=PRECISE_ENDGAME)
+        if status == BLOCK_AT_INFINITY:  # its last two samples kept (PathResult.valuation), the limit being no point
+            spaths[j] = replace(spaths[j], **{**common, "t": complex(lim.t)}, status=AT_INFINITY, endpoint=lim.xlast,
+                                order=v, previous=lim.xprev, previous_t=complex(lim.t / eo.sample_ratio))
+        elif status == AT_INFINITY:
+            spaths[j] = replace(spaths[j], **common, status=AT_INFINITY, endpoint=lim.x, order=v)
+        else:  # success on one sheet, singular on c >= 2 (the caller tests them)
+            spaths[j] = replace(spaths[j], **common, status=status, endpoint=lim.x)
     return spaths
 
 
 STUDY_EXTENDED = "study_extended"  # the ``retried`` of a path that the Study run in extended precision rescued
+BLOCK_AT_INFINITY = "block_at_infinity"  # a verdict of _precise_endgames (reported as at_infinity)
 PRECISE_CHUNK = 500  # steps in double-double before double precision is tried again (hybrid_track)
 PRECISE_STEPS = 30000  # steps in double-double per path (~0.3 ms each, m = 4)
 
