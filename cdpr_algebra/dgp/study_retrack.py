@@ -274,7 +274,7 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
         return spaths
     from cdpr_algebra.homotopy.endgame import block_at_infinity, decide_in_chart
     from cdpr_algebra.homotopy.hybrid_tracker import hybrid_track
-    from cdpr_algebra.homotopy.precise_endgame import precise_cauchy_endgame
+    from cdpr_algebra.homotopy.precise_endgame import precise_cauchy_endgame, relative_change
 
     hom, precise = _study_homotopy_and_twin(m, P1, P0, seed, gamma, corrector_floor=PRECISE_FLOOR)
     left = PRECISE_ENDGAME_BUDGET
@@ -288,8 +288,8 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
         moved, bounded, v = block_at_infinity(loop, loop_prev, block, turns, eo)
         if moved:
             return BLOCK_AT_INFINITY, v
-        est, est_prev = loop.mean(axis=0), loop_prev.mean(axis=0)
-        acc = float(np.linalg.norm(est - est_prev) / (1.0 + np.linalg.norm(est)))
+        est = loop.mean(axis=0)  # the Cauchy estimate, as precise_cauchy_endgame computes it
+        acc = relative_change(est, loop_prev.mean(axis=0))
         inf, undecided, order = decide_in_chart(est[None], np.array([acc]), loop[:1], loop_prev[:1], eo,
                                                 FastStudySystem.infinity_coordinate, [turns])
         if inf[0]:
@@ -389,9 +389,6 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
     from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
     from cdpr_algebra.homotopy.solve import group_solutions, solve_parameter_homotopy
 
-    def bound_s(x):
-        return residual_bound(x[None], RESIDUAL_TOL)[0]
-
     paths = list(res.track.paths)
     failed = [i for i, p in enumerate(paths) if p.status in FAILURES]
     if not failed:
@@ -446,8 +443,9 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
             XS = from_study(np.array([spaths[j].endpoint for j in sing]), m)
             F, _ = system.evaluate_and_jacobian(XS, target)
             rs = relative_residual(F, XS)
+            tol = np.maximum(opts.endgame.finite_residual, residual_bound(XS, RESIDUAL_TOL))
         for k, j in enumerate(sing):
-            if not (np.all(np.isfinite(XS[k])) and rs[k] <= max(opts.endgame.finite_residual, bound_s(XS[k]))):
+            if not (np.all(np.isfinite(XS[k])) and rs[k] <= tol[k]):
                 continue
             if coincides_with_any(regular, XS[k], opts.endgame.cluster_tol):  # c sheets meet on no regular root
                 continue

@@ -354,6 +354,18 @@ def _would_be_at_infinity(Y, accuracy, o: EndgameOptions) -> np.ndarray:
     return (accuracy <= DECENT_ACCURACY) & decide_in_chart(Y, accuracy, o=o)[0]
 
 
+def _vanishing_order_shown(v, winding, o: EndgameOptions):
+    """Whether samples falling like t^v show a coordinate that vanishes at the limit: v >= ``min_order``, and
+    v c >= ``min_order_winding`` where the winding numbers c are given (a power series in t^(1 / c) vanishes with
+    order k / c, k >= 1)."""
+    v = np.asarray(v, dtype=float)
+    with np.errstate(all="ignore"):
+        shown = np.isfinite(v) & (v >= o.min_order)
+        if winding is not None:
+            shown &= v * np.asarray(winding, dtype=float) >= o.min_order_winding
+    return shown
+
+
 def decide_in_chart(Y, accuracy, ylast=None, yprev=None, o: EndgameOptions = EndgameOptions(), coordinate=None,
                     winding=None):
     """Finite or at infinity, for limits Y* (rows) of paths in a projective chart, from the homogenizing
@@ -377,10 +389,7 @@ def decide_in_chart(Y, accuracy, ylast=None, yprev=None, o: EndgameOptions = End
         return zero, np.zeros(len(Y), dtype=bool), order
     with np.errstate(all="ignore"):
         v = np.log(np.abs(coordinate(ylast)) / np.abs(coordinate(yprev))) / np.log(o.sample_ratio)
-    shown = np.isfinite(v) & (v >= o.min_order)
-    if winding is not None:  # a power series in t^(1 / c) vanishes with order k / c, k >= 1
-        with np.errstate(all="ignore"):
-            shown &= v * np.asarray(winding, dtype=float) >= o.min_order_winding
+    shown = _vanishing_order_shown(v, winding, o)
     order[zero & shown] = v[zero & shown]
     return zero & shown, zero & ~shown, order
 
@@ -420,14 +429,15 @@ def block_at_infinity(loop, loop_prev, cols, winding: int, o: EndgameOptions = E
         h, hp = 1.0 / (a[0] + Y @ a[1:]), 1.0 / (a[0] + P @ a[1:])
         if not (np.all(np.isfinite(h)) and np.all(np.isfinite(hp))):
             return False, False, float("nan")
-        size, mean = np.mean(np.abs(h)), abs(h.mean())
+        hm = h.mean()
+        size, mean = np.mean(np.abs(h)), abs(hm)
         # small against the loop's values, and no steady value: a mean that the previous loop repeats is h(0) != 0
         # (measured: a root with tensions 1e5 times the load, reached by two paths circling a near-double root,
         # |mean h| = 2.07e-11 on both loops, 1.3e-9 of |h|), unless it is at the rounding of the samples
         zero = mean <= o.infinity_margin * max(o.cauchy_tol, 1e-14) * size and (
-            mean <= o.infinity_margin * abs(h.mean() - hp.mean()) or mean <= 1e-14 * size)
+            mean <= o.infinity_margin * abs(hm - hp.mean()) or mean <= 1e-14 * size)
         v = float(np.log(size / np.mean(np.abs(hp))) / np.log(o.sample_ratio))
-    shown = np.isfinite(v) and v >= o.min_order and v * winding >= o.min_order_winding
+    shown = bool(_vanishing_order_shown(v, [winding], o))
     steady = np.isfinite(v) and abs(v) < o.min_order  # h(t) ~ h(0): the loops are in the limit's neighbourhood
     return bool(zero and shown), bool(not zero and steady), (v if zero and shown else float("nan"))
 

@@ -26,7 +26,7 @@ import numpy as np
 from .hybrid_tracker import hybrid_track
 from .results import SUCCESS
 
-__all__ = ["PreciseLimit", "precise_cauchy_endgame"]
+__all__ = ["PreciseLimit", "precise_cauchy_endgame", "relative_change"]
 
 
 @dataclass(frozen=True)
@@ -51,7 +51,8 @@ class PreciseLimit:
     loop_prev: np.ndarray | None = None
 
 
-def _rel(a, b) -> float:
+def relative_change(a, b) -> float:
+    """|a - b| / (1 + |a|): how far two estimates (or a loop's end from its start) differ, relative to a."""
     return float(np.linalg.norm(a - b) / (1.0 + np.linalg.norm(a)))
 
 
@@ -71,7 +72,7 @@ def _loops(homotopy, precise, x, r, o, tr, chunk, budget):
         if seg.status != SUCCESS:
             return None, 0, False, steps, psteps
         z = seg.x
-        if (j + 1) % M == 0 and _rel(x, z) <= o.loop_closure_tol:
+        if (j + 1) % M == 0 and relative_change(x, z) <= o.loop_closure_tol:
             return np.array(samples), (j + 1) // M, True, steps, psteps
     return None, 0, False, steps, psteps
 
@@ -109,7 +110,7 @@ def precise_cauchy_endgame(homotopy, precise, x, t0: float, o, tr, chunk: int = 
             continue
         est = loop.mean(axis=0)
         if prev is not None:
-            d = _rel(est, prev)
+            d = relative_change(est, prev)
             if d < acc:
                 best, acc, wind = est, d, c
             if d <= o.cauchy_tol and (settled is None or settled(loop, prev_loop, c)):
