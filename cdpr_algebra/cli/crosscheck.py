@@ -2,10 +2,16 @@
 
     cdpr crosscheck ROBOT [--lengths L1 .. Ln] [--taut C1 .. Cm] [--max-m M] [--json]
     cdpr crosscheck ROBOT [--lengths L1 .. Ln] --against FILE [--json]
+    cdpr crosscheck ROBOT [--lengths L1 .. Ln] --taut C1 .. Cm --roots FILE [--json]
 
 With ``--against``: another solver's results (JSON ``{"solver", "subproblems": [{"taut", "count", "boxes"}]}`` or
 text lines ``1 2 3 ; [lo, hi] [lo, hi] [lo, hi]``, :mod:`cdpr_algebra.comparison.external`) against our certified
 DGP, taut set by taut set; exit status 1 when some subproblem disagrees, 3 when some could not be compared.
+
+With ``--roots``: another solver's complex roots of the taut set's equations (those of ``cdpr export --format phc``:
+PHCpack's output file of ``phc -b``, or JSON ``{"solver", "variables", "roots"}``,
+:mod:`cdpr_algebra.comparison.roots`) matched one to one with our proven roots; exit status 1 when they differ
+definitely (a proven root on one side only), 3 when not compared.
 
 Without ``--taut``: every set of m = 1 .. min(n, 6, M) taut cables; with it, that one set (cable numbers from 1).
 Prints a table (one row per subproblem: both admissible counts, the interval solver's undecided boxes, agree /
@@ -38,6 +44,9 @@ def add_parser(subparsers) -> None:
     p.add_argument("--max-m", type=int, default=6, metavar="M", help="largest number of taut cables (default 6)")
     p.add_argument("--against", metavar="FILE", help="another solver's results (JSON or text boxes, see "
                                                      "cdpr_algebra.comparison.external) instead of our interval solver")
+    p.add_argument("--roots", metavar="FILE", help="another solver's complex roots of the --taut set's equations "
+                                                   "(PHCpack's output of `cdpr export --format phc`, or JSON; see "
+                                                   "cdpr_algebra.comparison.roots)")
     p.add_argument("--jobs", type=int, default=None,
                    help="threads for the interval searches (default: all cores; the result does not depend on it)")
     p.add_argument("--extended-precision", action="store_true",
@@ -76,7 +85,11 @@ def run(args) -> int:
         raise CdprInputError("--max-m", f"expected a number >= 1, got {args.max_m}")
 
     if args.against is not None:
+        if args.roots is not None:
+            raise CdprInputError("--roots", "give either --against or --roots, not both")
         return _against(args, robot, lengths)
+    if args.roots is not None:
+        return _roots(args, robot, lengths, sets)
 
     def progress(c, done, total):
         h = "-" if c.homotopy is None else c.homotopy
@@ -125,3 +138,19 @@ def _against(args, robot, lengths) -> int:
               "compared: " + ", ".join(str(list(c.taut)) for c in result.disagreements + result.not_compared),
               file=sys.stderr)
     return code
+
+
+def _roots(args, robot, lengths, sets) -> int:
+    from cdpr_algebra.comparison.roots import compare_roots, roots_report
+
+    if sets is None:
+        raise CdprInputError("--taut", "--roots compares one taut set: give its cables with --taut")
+    c = compare_roots(robot, lengths, sets[0], args.roots)
+    if args.json:
+        print(json.dumps(c.to_dict(), indent=2))
+    else:
+        print(f"{robot.name}: lengths {', '.join(f'{v:g}' for v in lengths)}")
+        print(roots_report(c))
+    if c.agree is None:
+        print(f"cdpr crosscheck: {c.compared}", file=sys.stderr)
+    return {True: 0, False: 1, None: 3}[c.agree]

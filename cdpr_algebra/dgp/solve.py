@@ -138,7 +138,7 @@ from cdpr_algebra.model.pose import angles_from_matrix
 from cdpr_algebra.model.stability import stability_classes
 
 __all__ = ["DGPSolution", "DGPSubproblem", "DGPResult", "dgp", "generic_path", "available_m", "prune", "FastTautSystem",
-           "fast_family", "dgp_table", "summary_line", "incompleteness"]
+           "fast_family", "dgp_table", "summary_line", "incompleteness", "taut_set_roots"]
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 REAL_TOL = 1e-6
@@ -490,6 +490,18 @@ def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, opti
     return sub, sols
 
 
+def taut_set_roots(robot, rho, cables, seed: int = 0, options=None):
+    """(DGPSubproblem with its endpoint certificates, Z (N, 12 + m) its regular endpoints in world coordinates (p, the
+    columns u, v, w of R, lam_i = tau_i / rho_i: the unknowns of :mod:`cdpr_algebra.dgp.export`) or None (a set
+    pruned, or solved as a rod), proven (N,) bool: each proven a root, unique in its box and distinct from the others)
+    of the 0-based taut set ``cables``, tracked whatever the interval filter says: every root, for comparisons with
+    another solver's (:mod:`cdpr_algebra.comparison.roots`)."""
+    sub, _, Z = _solve_taut_set(robot, np.asarray(rho, dtype=float), tuple(cables), seed, options, exclude=False)
+    proofs: dict = {}
+    (sub,) = _with_endpoint_certificates(robot, rho, [(cables, sub, Z)], proofs)
+    return sub, Z, proofs.get(0, np.zeros(0 if Z is None else len(Z), dtype=bool))
+
+
 def equilibrium_from_pose(robot, rho, cables, position, rotation, tensions, found_by: str = "homotopy",
                           certify: bool = True) -> DGPSolution:
     """The DGPSolution of the 0-based taut set ``cables`` at a pose found by another method (tensions: all n, 0 on
@@ -694,11 +706,12 @@ def _settle_on_other_runs_roots(m, target, res, other, options):
                                    [p.endpoint for p in other.track.paths if p.status == SUCCESS])
 
 
-def _with_endpoint_certificates(robot, rho, items) -> list:
+def _with_endpoint_certificates(robot, rho, items, proofs: dict | None = None) -> list:
     """The subproblems of ``items`` = [(0-based cables, DGPSubproblem, regular endpoints in world coordinates or
     None)] with their endpoint certificates (one vectorized Krawczyk run per m, :func:`cdpr_algebra.certificates.endpoints.certify_endpoints`)
     and ``complete`` decided: no failed path, outcomes adding up to the generic count, and every regular endpoint
-    proven a distinct root (its box unique-root, disjoint from the others)."""
+    proven a distinct root (its box unique-root, disjoint from the others).  ``proofs``: a dict that receives, for
+    the index k of each item with endpoints, which of them are so proven ((N,) bool)."""
     from cdpr_algebra.certificates.endpoints import certify_endpoints
 
     out = [sub for _, sub, _ in items]
@@ -714,6 +727,8 @@ def _with_endpoint_certificates(robot, rho, items) -> list:
                                                           balls, readings)):
             sub = items[k][1]
             ok, why = boxes.distinct(over)
+            if proofs is not None:
+                proofs[k] = ok
             certified = int(ok.sum())
             # a singular endpoint on a positive-dimensional set (sub.family, _solve_taut_set) leaves it incomplete
             complete = sub.accounted and certified == len(ok) == sub.outcomes["regular"] and sub.family is None
