@@ -479,3 +479,45 @@ def test_exact_mode_frames():
     assert r.is_zero and q.is_ground and not q.is_zero
     A = dialytic_matrices_exact(_robot(T3), T3["x"], "20")
     assert len(A) == 5 and all(isinstance(v, (int, Fraction)) for k in range(5) for row in A[k] for v in row)
+
+
+# ------------------------------------------------------------------------------------------ far positions
+def test_far_positions_keep_all_24_roots_by_their_backward_error():
+    """G at 1e4 (1, 1, 1) with Table 1's robot (cables ~1.7e4 long, nearly parallel; tensions up to ~500 times the
+    load): all 24 roots, each balancing forces and moments to 1e-8 of the forces involved (measured up to 1.6e-9; a
+    fixed residual bound of 1e-7 times the load had dropped 8 of them: their residuals grow like |G|^2 eps)."""
+    from pathlib import Path
+
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot(Path(__file__).resolve().parents[1] / "examples" / "seed004_table1.toml")
+    G = np.array([1e4, 1e4, 1e4])
+    res = igp_position(robot, G)
+    assert len(res.solutions) == 24 and res.found == 24 and res.status == "complete", res.message
+    A = robot.base
+    for s in res.solutions:
+        B = G + (s.rotation @ (robot.platform - robot.com).T).T
+        f = (s.tensions / s.lengths)[:, None] * (A - B)
+        scale = robot.load + np.abs(s.tensions).sum()
+        assert np.abs(f.sum(axis=0) + robot.load * robot.load_direction).max() <= 1e-8 * scale
+        assert np.abs(np.cross(B - G, f).sum(axis=0)).max() <= 1e-8 * scale * robot.size
+
+
+def test_fewer_than_24_roots_is_incomplete_with_exit_status_3(capsys):
+    """G at the anchor A1 of Table 1's robot (S(e3) singular for every e3): fewer than 24 isolated roots found, which
+    the result may not call complete; the command exits 3 and says why."""
+    from pathlib import Path
+
+    from cdpr_algebra.cli.main import main
+    from cdpr_algebra.igp.results import IGPResult
+    from cdpr_algebra.model.robot import load_robot
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "seed004_table1.toml"
+    robot = load_robot(path)
+    res = igp_position(robot, robot.base[0])
+    assert res.found < 24 and res.status == "incomplete" and "INCOMPLETE" in res.message
+    assert res.to_dict()["count"]["found"] == res.found and res.to_dict()["count"]["generic"] == 24
+    assert main(["igp", str(path), "--position", *map(str, robot.base[0])]) == 3
+    assert "incomplete" in capsys.readouterr().err
+    assert IGPResult("position", (), generic_count=24, found=24).status == "complete"
+    assert IGPResult("position", (), generic_count=24, found=23).status == "incomplete"

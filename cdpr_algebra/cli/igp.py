@@ -4,6 +4,7 @@ orientation (closed form) or assigned position (dialytic elimination, 24 solutio
 from __future__ import annotations
 
 import json
+import sys
 
 from cdpr_algebra.model.errors import CdprInputError
 
@@ -72,4 +73,13 @@ def run(args) -> int:
     else:
         print(f"{robot.name}: IGP with assigned {result.problem}")
         print(igp_table(result, include_complex=args.all))
+    if result.status == "incomplete":
+        print(f"cdpr igp: incomplete: {result.found} of the {result.generic_count} solutions found, the others lost "
+              f"to rounding or at infinity here (not decided) (exit status 3)", file=sys.stderr)
+        return 3
+    if result.status == "uncertified":
+        n = sum(1 for s in result.real_solutions if not s.certified)
+        print(f"cdpr igp: uncertified: {n} real solution(s) without an interval certificate (exit status 3)",
+              file=sys.stderr)
+        return 3
     return 0

@@ -179,6 +179,8 @@ class IGPResult:
     solution_set: SolutionSet | None = None
     seconds: float = 0.0
     message: str = ""
+    generic_count: int | None = None  # isolated solutions of a generic instance (24 with assigned position)
+    found: int | None = None  # distinct solutions found, complex included (also where only the real are returned)
 
     @property
     def real_solutions(self) -> tuple:
@@ -187,9 +189,13 @@ class IGPResult:
     @property
     def status(self) -> str:
         """'solution set' (no isolated solution: ``solution_set`` describes the continuum or says it is empty),
-        'complete' (every real solution certified), or 'uncertified' (some real solution without a certificate)."""
+        'incomplete' (fewer solutions found than ``generic_count``: the others lost to rounding, or at infinity for
+        this instance -- not decided), 'complete' (every real solution certified), or 'uncertified' (some real
+        solution without a certificate)."""
         if self.solution_set is not None:
             return "solution set"
+        if self.generic_count is not None and self.found is not None and self.found < self.generic_count:
+            return "incomplete"
         return "complete" if all(s.certified for s in self.real_solutions) else "uncertified"
 
     def to_dict(self, include_complex: bool = False) -> dict:
@@ -198,7 +204,8 @@ class IGPResult:
             "status": self.status,
             "problem": self.problem,
             "solutions": [s.to_dict() for s in sols],
-            "count": {"total": len(self.solutions), "real": len(self.real_solutions),
+            "count": {"total": len(self.solutions), "real": len(self.real_solutions), "found": self.found,
+                      "generic": self.generic_count,
                       "admissible": sum(s.admissible for s in self.solutions),
                       "stable": sum(bool(s.stable_proven) and s.admissible for s in self.solutions),
                       "stable_float": sum(bool(s.stable) and s.admissible for s in self.solutions)},
