@@ -48,6 +48,20 @@ def test_invalid_configuration_reported_not_valid(capsys):
                  "--json"]) == 0
     (c,) = json.loads(capsys.readouterr().out)["configurations"]
     assert not c["valid"] and c["rmin"] == 0.0 and min(c["tensions"]) < 0
+    # r_min is 0 by definition there: its certificate (of the nearest critical point, ~0.0815) does not certify it
+    assert c["certified"] is None and c["radius_certificate"]["radius_enclosure"][0] > 0.08
+    assert main(["cc", ROBOT, "--position", "0", "1", "2", "--configuration", "1", "2", "3", "4", "5", "7"]) == 0
+    text = capsys.readouterr().out
+    assert "not valid at the pose (r_min 0)" in text and " yes " not in text.splitlines()[3]
+
+
+@pytest.mark.parametrize("position", [["0", "1", "20"], ["100", "100", "100"]])
+def test_a_pose_without_a_valid_configuration_says_so(capsys, position):
+    """Above the base, or far outside it, no 6-cable configuration is valid (the radii were asked of none)."""
+    assert main(["cc", ROBOT, "--position", *position]) == 0
+    assert "no valid cable configuration" in capsys.readouterr().out
+    assert main(["cc", ROBOT, "--position", *position, "--json"]) == 0
+    assert all(not c["valid"] for c in json.loads(capsys.readouterr().out)["configurations"])
 
 
 def test_table(capsys):

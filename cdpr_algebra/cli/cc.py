@@ -93,7 +93,9 @@ def _entry(cc, radii=None, safety=None, unc=None) -> dict:
         d["radii"] = radii.radii_by_number()
         d["rmin"] = float(radii.rmin) if cc.valid else 0.0
         d["limiting"] = radii.limiting + 1 if not isinstance(radii.limiting, str) else radii.limiting
-        d["certified"] = radii.certified
+        # an invalid configuration has r_min = 0 by definition: the certificate is of the distance to the nearest
+        # critical point, not of that 0
+        d["certified"] = radii.certified if cc.valid else None
         d["radius_certificate"] = radii.radius_certificate
         d["nearest_point"] = radii.nearest
         d["failed_paths"] = int(radii.failed_paths)
@@ -132,7 +134,7 @@ def _pose(args, robot, R) -> tuple[list, dict]:
     six = [c for c in ccs if len(c.cables) == 6]
     extra = {} if args.proof_boxes is None else {"nearest_max_boxes": args.proof_boxes}
     radii = dict(zip([c.cables for c in six], cc_radii_many(robot, [(G, c.cables, R) for c in six], certify=True,
-                                                            **extra)))
+                                                            **extra))) if six else {}
     ccs = [replace(c, rmin=(radii[c.cables].rmin if c.valid else 0.0)) if c.cables in radii else c for c in ccs]
     ccs = rank_configurations(ccs) if numbers is None else ccs
     safety, unc = {}, {}
@@ -186,7 +188,7 @@ def _radius_cell(e) -> str:
     """'yes' (critical point certified and nearest proven), 'critical point' (certified, nearest-ness a float
     search), 'no', or '-'."""
     rc = e.get("radius_certificate")
-    if rc is None:
+    if rc is None or not e["valid"]:
         return "-"
     if e["certified"]:
         return "yes"
@@ -228,7 +230,8 @@ def _table(entries, head) -> str:
                   if rc["critical_point"] == "certified" else "critical point not certified")
             near = (f"nearest proven (interval exclusion: no point of the 7 surfaces within {rc['proven_lower_bound']:.12g})"
                     if rc["nearest"] == "proven" else "nearest by a floating-point search (homotopy), not proven")
-            lines.append(f"#{k + 1} r_min: {cp}; {near}")
+            what = "r_min" if e["valid"] else "not valid at the pose (r_min 0); the nearest critical point"
+            lines.append(f"#{k + 1} {what}: {cp}; {near}")
         if e["radii"]:
             lines.append(f"#{k + 1} radii{' (floating point)' if rc is not None else ''}: "
                          + ", ".join(f"{c}: {r:.10g}" for c, r in e["radii"].items()))
