@@ -5,6 +5,7 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 
 from cdpr_algebra.cli.main import main
 
@@ -81,3 +82,24 @@ def test_warm_environment_keeps_the_build_environment():
     assert env["PYTHONPATH"].split(sep) == ["/build/lib", "/iso/site", "/iso/overlay"]
     assert "NUMBA_CACHE_DIR" not in env and env["HOME"] == "/root"
     assert setup_py.warm_environment("/build/lib", {})["PYTHONPATH"] == "/build/lib"
+
+
+@pytest.mark.parametrize("argv, field, words", [
+    (["export", "examples/seed000_test1.toml", "--taut", "1", "2", "3", "--out", "{missing}/x.txt"], "--out",
+     "does not exist"),
+    (["export", "examples/seed000_test1.toml", "--taut", "1", "2", "3", "--out", "{tmp}"], "--out", "is a directory"),
+    (["track", "examples/seed000_test1.toml", "--to", "7.6", "10", "9.5", "--steps", "1", "--plot", "{missing}/p.png"],
+     "--plot", "does not exist"),
+    (["track", "examples/seed000_test1.toml", "--to", "7.6", "10", "9.5", "--steps", "1", "--plot", "{tmp}/p.txt"],
+     "--plot", "ending in .png"),
+    (["plot-sweep", "{tmp}/sweep", "--out", "{tmp}/s.png"], "DIR", "not a sweep's header"),
+    (["plot-sweep", "{tmp}/sweep", "--out", "{missing}/s.png"], "--out", "does not exist"),
+])
+def test_files_to_write_or_read_are_checked_before_any_work(tmp_path, capsys, argv, field, words):
+    """One line naming the option and exit status 2, never a traceback after the work is done."""
+    (tmp_path / "sweep").mkdir()
+    (tmp_path / "sweep" / "sweep.json").write_text("garbage")
+    argv = [a.format(tmp=tmp_path, missing=tmp_path / "missing") for a in argv]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert f"field '{field}'" in err and words in err and "Traceback" not in err

@@ -82,6 +82,9 @@ def test_text_form(results, tmp_path, capsys):
     ('{"subproblems": [{"taut": [1, 2]}, {"taut": [2, 1]}]}', "subproblems[1]"),
     ("1 2 ; [0, 1] [0, 1]\n", "r.txt line 1"),
     ("1 2 [0, 1] [0, 1] [0, 1]\n", "r.txt line 1"),
+    ('{"solver": "me", "subproblems": []}', "--against"),  # nothing to compare is no agreement
+    ("1 2 ; none\n1 2 ; [0, 1] [0, 1] [0, 1]\n", "r.txt line 2"),
+    ("1 2 ; [0, 1] [0, 1] [0, 1]\n1 2 ; none\n", "r.txt line 2"),
 ])
 def test_bad_files_name_the_field(tmp_path, content, field):
     f = tmp_path / ("r.json" if content.startswith("{") else "r.txt")

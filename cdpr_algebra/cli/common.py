@@ -8,7 +8,7 @@ import math
 
 from cdpr_algebra.model.errors import CdprInputError
 
-__all__ = ["INCOMPLETE", "Parser", "finite", "dgp_lengths", "as_flags", "print_incomplete"]
+__all__ = ["INCOMPLETE", "Parser", "finite", "dgp_lengths", "as_flags", "print_incomplete", "output_file"]
 
 INCOMPLETE = 3  # exit status: a result not proven complete (failed paths, uncertified endpoints), said on stderr
 
@@ -24,6 +24,22 @@ def print_incomplete(result, where: str = "there") -> None:
           f"missing {where} (exit status 3):", file=sys.stderr)
     for s in result.incomplete:
         print(f"  {list(s.taut)}: {incompleteness(s)}", file=sys.stderr)
+
+
+def output_file(path, option: str, suffixes: tuple = ()):
+    """The file an option names for writing, checked before any work is done: its suffix one of ``suffixes`` (any
+    when empty), its directory existing, and not itself a directory (else a :class:`CdprInputError` naming
+    ``option``)."""
+    from pathlib import Path
+
+    out = Path(path)
+    if suffixes and out.suffix.lower() not in suffixes:
+        raise CdprInputError(option, f"expected a file name ending in {' or '.join(suffixes)}, got {str(out)!r}")
+    if out.is_dir():
+        raise CdprInputError(option, f"{str(out)!r} is a directory, not a file name")
+    if not out.parent.is_dir():
+        raise CdprInputError(option, f"directory {str(out.parent)!r} does not exist")
+    return out
 
 
 class Parser(argparse.ArgumentParser):

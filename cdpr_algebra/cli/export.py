@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import dgp_lengths, finite
+from .common import dgp_lengths, finite, output_file
 
 
 def add_parser(subparsers) -> None:
@@ -26,6 +26,8 @@ def run(args) -> int:
     from cdpr_algebra.dgp.export import export_subproblem
     from cdpr_algebra.model.robot import load_robot
 
+    if args.out:
+        output_file(args.out, "--out")
     robot = load_robot(args.robot)
     lengths = dgp_lengths(args, robot)
     if len(set(args.taut)) != len(args.taut) or any(not 1 <= c <= robot.n for c in args.taut):

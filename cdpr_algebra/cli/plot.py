@@ -12,7 +12,7 @@ from pathlib import Path
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import INCOMPLETE, dgp_lengths, finite, print_incomplete
+from .common import INCOMPLETE, dgp_lengths, finite, output_file, print_incomplete
 
 SUFFIXES = (".png", ".svg")
 
@@ -32,12 +32,7 @@ def add_parser(subparsers) -> None:
 
 def output_path(out: str | None, robot_file: str) -> Path:
     """The file to write: ``out`` checked (suffix .png / .svg, existing directory), or the default name."""
-    path = Path(out) if out is not None else Path(f"{Path(robot_file).stem}_equilibria.png")
-    if path.suffix.lower() not in SUFFIXES:
-        raise CdprInputError("--out", f"expected a file name ending in .png or .svg, got {str(path)!r}")
-    if not path.parent.is_dir():
-        raise CdprInputError("--out", f"directory {str(path.parent)!r} does not exist")
-    return path
+    return output_file(out if out is not None else f"{Path(robot_file).stem}_equilibria.png", "--out", SUFFIXES)
 
 
 def run(args) -> int:

@@ -19,6 +19,10 @@ def add_parser(subparsers) -> None:
 def run(args) -> int:
     from cdpr_algebra.sweep.pictures import save_sweep_figure
 
+    from .common import output_file
+
+    output_file(args.out, "--out", (".png", ".svg", ".pdf"))
+
     save_sweep_figure(args.dir, args.out, args.value)
     print(f"wrote {args.out}")
     return 0

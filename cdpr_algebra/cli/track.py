@@ -27,7 +27,9 @@ import sys
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import INCOMPLETE, as_flags, dgp_lengths, finite
+from .common import INCOMPLETE, as_flags, dgp_lengths, finite, output_file
+
+PLOT_SUFFIXES = (".png", ".svg", ".pdf")  # --plot: the figure formats of matplotlib's Agg and vector backends
 
 
 def add_parser(subparsers) -> None:
@@ -85,8 +87,10 @@ def run(args) -> int:
         if any(v <= 0 for v in args.to):
             raise CdprInputError("--to", "cable lengths must be > 0")
         traj = straight(dgp_lengths(args, robot), np.array(args.to), robot.n)
-    if args.animate and not args.animate.lower().endswith((".gif", ".mp4")):
-        raise CdprInputError("--animate", f"expected a .gif or .mp4 file name, got {args.animate!r}")
+    if args.animate:
+        output_file(args.animate, "--animate", (".gif", ".mp4"))
+    if args.plot:
+        output_file(args.plot, "--plot", PLOT_SUFFIXES)
     samples = np.linspace(traj.start, traj.end, args.steps + 1)
     start = None
     if args.start_angles is not None and args.start_position is None:

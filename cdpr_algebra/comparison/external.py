@@ -129,6 +129,8 @@ def load_results(path, n: int) -> tuple[str, tuple]:
         subs = data.get("subproblems")
         if not isinstance(subs, list):
             raise CdprInputError("--against", 'expected a list "subproblems"')
+        if not subs:  # nothing compared is no agreement
+            raise CdprInputError("--against", '"subproblems" is empty: no result to compare')
         out, seen = [], set()
         for k, s in enumerate(subs):
             where = f"subproblems[{k}]"
@@ -158,7 +160,12 @@ def load_results(path, n: int) -> tuple[str, tuple]:
         taut = _taut(head.replace(",", " ").split(), n, where)
         groups.setdefault(taut, [])
         if tail.strip().lower() == "none":
+            if groups[taut]:
+                raise CdprInputError(where, f"taut set {list(taut)} has boxes and 'none'")
+            groups[taut] = None
             continue
+        if groups[taut] is None:
+            raise CdprInputError(where, f"taut set {list(taut)} has boxes and 'none'")
         pairs = re.findall(r"\[\s*([^,\]\s]+)\s*,\s*([^\]\s]+)\s*\]", tail)
         if len(pairs) < 3:
             raise CdprInputError(where, f"expected 3 intervals [lo, hi] after ';', got {tail.strip()!r}")
@@ -168,7 +175,7 @@ def load_results(path, n: int) -> tuple[str, tuple]:
             raise CdprInputError(where, f"not a number in {tail.strip()!r}") from None
     if not groups:
         raise CdprInputError("--against", "no result lines")
-    return "text results", tuple(TheirSubproblem(t, len(b), tuple(b)) for t, b in groups.items())
+    return "text results", tuple(TheirSubproblem(t, len(b or ()), tuple(b or ())) for t, b in groups.items())
 
 
 def _inside(box, p, slack) -> bool:

@@ -26,14 +26,17 @@ def sweep_figure(out, value: str = "n_stable"):
     header_file = out / "sweep.json"
     if not header_file.exists():
         raise CdprInputError("DIR", f"{out} holds no sweep (no sweep.json)")
-    header = json.loads(header_file.read_text(encoding="utf-8"))
+    try:
+        header = json.loads(header_file.read_text(encoding="utf-8"))
+        axes = header["grid"]["axes"]
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise CdprInputError("DIR", f"{header_file} is not a sweep's header ({type(exc).__name__}: {exc})") from None
     pts = read_table(out, "points")
     if pts is None:
         raise CdprInputError("DIR", f"{out} has no finished point yet")
     if value not in VALUES or value not in pts.column_names:
         have = [v for v in VALUES if v in pts.column_names]
         raise CdprInputError("--value", f"expected one of {', '.join(have)}, got {value!r}")
-    axes = header["grid"]["axes"]
     rows = pts.to_pylist()
     bad = [r for r in rows if r["error"] or not r["complete"]]
     fig, ax = plt.subplots(figsize=(6, 4.5))
