@@ -56,6 +56,10 @@ load_direction = [0, 0, 1]
         ({"bases": [[0, 0, 0]]}, "bases", "unknown key"),
         ({"com": "middle"}, "com", "expected a list"),
         ({"load": "heavy"}, "load", "expected a number"),
+        ({"load": 1e300}, "load", "overflow double precision"),
+        ({"load": 1e-300}, "load", "underflow double precision"),
+        ({"lengths": [1, 1e308, 3]}, "lengths[1]", "overflow double precision"),
+        ({"base": [[0, 0, 0], [1e101, 0, 0], [0, 12, 0]]}, "base[1][0]", "beyond 1e+100"),
     ],
 )
 def test_bad_input_names_field(tmp_path, change, field, words, capsys):
@@ -91,6 +95,21 @@ def test_cli_argument_errors(capsys):
         main(["igp", "examples/seed004_table1.toml", "--orientation", "0", "zero", "0"])
     assert e.value.code == 2
     assert "expected a number" in capsys.readouterr().err
+
+
+def test_cli_numbers_beyond_1e100_are_refused(capsys):
+    with pytest.raises(SystemExit) as e:
+        main(["igp", "examples/seed004_table1.toml", "--position", "1e200", "0", "0"])
+    assert e.value.code == 2 and "beyond 1e100" in capsys.readouterr().err
+
+
+def test_json_of_results_is_strict_json():
+    """A non-finite number in a result (an overflowed residual, an accuracy never measured) prints as null."""
+    from cdpr_algebra.report.jsonable import json_text
+
+    text = json_text({"residual": np.float64("inf"), "x": [1.0, float("nan")], "z": complex(1, float("inf"))})
+    assert json.loads(text) == {"residual": None, "x": [1.0, None], "z": [1.0, None]}
+    assert "Infinity" not in text and "NaN" not in text
 
 
 def test_load_direction_normalized():

@@ -31,14 +31,13 @@ missing (its r_min stays proven when ``certified``); 2 on bad input.
 
 from __future__ import annotations
 
-import json
 import sys
 import time
 from dataclasses import replace
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import INCOMPLETE, as_flags, finite
+from .common import INCOMPLETE, as_flags, finite, json_text
 
 
 def add_parser(subparsers) -> None:
@@ -280,7 +279,7 @@ def _run(args) -> int:
     out = {"robot": robot.name, **head, "angles": angles, "configurations": entries,
            "seconds": time.perf_counter() - t0}
     if args.json:
-        print(json.dumps(jsonable(out), indent=2))
+        print(json_text(out, indent=2))
     else:
         where = f"pose G = {head['position']}" if head["mode"] == "pose" else \
             f"{head['mode']} {head['path']['expressions']} over {head['path']['ranges']}"

@@ -8,7 +8,8 @@ import math
 
 from cdpr_algebra.model.errors import CdprInputError
 
-__all__ = ["INCOMPLETE", "Parser", "finite", "dgp_lengths", "as_flags", "print_incomplete", "output_file"]
+__all__ = ["INCOMPLETE", "Parser", "finite", "dgp_lengths", "as_flags", "print_incomplete", "output_file",
+           "json_text"]
 
 INCOMPLETE = 3  # exit status: a result not proven complete (failed paths, uncertified endpoints), said on stderr
 
@@ -24,6 +25,14 @@ def print_incomplete(result, where: str = "there") -> None:
           f"missing {where} (exit status 3):", file=sys.stderr)
     for s in result.incomplete:
         print(f"  {list(s.taut)}: {incompleteness(s)}", file=sys.stderr)
+
+
+def json_text(v, **kwargs) -> str:
+    """Strict JSON of a result record (:func:`cdpr_algebra.report.jsonable.json_text`; imported here on first use:
+    ``cdpr --help`` imports every command's module, and that one imports numpy)."""
+    from cdpr_algebra.report.jsonable import json_text as text
+
+    return text(v, **kwargs)
 
 
 def output_file(path, option: str, suffixes: tuple = ()):
@@ -58,6 +67,9 @@ def finite(name):
             raise argparse.ArgumentTypeError(f"{name}: expected a number, got {text!r}") from None
         if not math.isfinite(v):
             raise argparse.ArgumentTypeError(f"{name}: expected a finite number, got {text!r}")
+        if abs(v) > 1e100:  # as the robot's numbers (model.robot.MAX_MAGNITUDE): squares would overflow
+            raise argparse.ArgumentTypeError(f"{name}: {text} is beyond 1e100: squares and products of such numbers "
+                                             f"overflow double precision (choose other units)")
         return v
     return conv
 

@@ -27,12 +27,11 @@ incomplete: homotopy failed paths, undecided interval boxes); 2 on bad input.
 
 from __future__ import annotations
 
-import json
 import sys
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import finite
+from .common import finite, json_text
 
 
 def add_parser(subparsers) -> None:
@@ -103,7 +102,7 @@ def run(args) -> int:
     result = crosscheck(robot, lengths, sets=sets, max_m=args.max_m, progress=progress, jobs=args.jobs,
                         extended=args.extended_precision)
     if args.json:
-        print(json.dumps(result.to_dict(), indent=2))
+        print(json_text(result.to_dict(), indent=2))
     else:
         print(f"{robot.name}: cross-check homotopy / interval, lengths {', '.join(f'{v:g}' for v in lengths)}")
         print(crosscheck_table(result))
@@ -128,7 +127,7 @@ def _against(args, robot, lengths) -> int:
 
     result = crosscheck_against(robot, lengths, args.against, progress=progress)
     if args.json:
-        print(json.dumps(result.to_dict(), indent=2))
+        print(json_text(result.to_dict(), indent=2))
     else:
         print(f"{robot.name}: {result.solver} against cdpr_algebra, lengths {', '.join(f'{v:g}' for v in lengths)}")
         print(external_table(result))
@@ -147,7 +146,7 @@ def _roots(args, robot, lengths, sets) -> int:
         raise CdprInputError("--taut", "--roots compares one taut set: give its cables with --taut")
     c = compare_roots(robot, lengths, sets[0], args.roots)
     if args.json:
-        print(json.dumps(c.to_dict(), indent=2))
+        print(json_text(c.to_dict(), indent=2))
     else:
         print(f"{robot.name}: lengths {', '.join(f'{v:g}' for v in lengths)}")
         print(roots_report(c))

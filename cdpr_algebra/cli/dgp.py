@@ -4,12 +4,11 @@ when an admissible equilibrium may be missing, the interval branch and prune hav
 
 from __future__ import annotations
 
-import json
 import sys
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import INCOMPLETE, dgp_lengths, finite, print_incomplete
+from .common import INCOMPLETE, dgp_lengths, finite, json_text, print_incomplete
 
 
 def add_parser(subparsers) -> None:
@@ -87,7 +86,7 @@ def run(args) -> int:
         out = result.to_dict()
         if args.settle:
             out["settle"] = [r.to_dict() for r in records]
-        print(json.dumps(out, indent=2))
+        print(json_text(out, indent=2))
     else:
         print(f"{robot.name}: DGP, lengths {', '.join(f'{v:g}' for v in lengths)}")
         print(dgp_table(result, robot.n))

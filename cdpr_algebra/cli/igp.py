@@ -3,12 +3,11 @@ orientation (closed form) or assigned position (dialytic elimination, 24 solutio
 
 from __future__ import annotations
 
-import json
 import sys
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import finite
+from .common import finite, json_text
 
 
 def add_parser(subparsers) -> None:
@@ -69,7 +68,7 @@ def run(args) -> int:
 
         result = igp_position(robot, np.array(args.position))
     if args.json:
-        print(json.dumps(result.to_dict(include_complex=args.all), indent=2))
+        print(json_text(result.to_dict(include_complex=args.all), indent=2))
     else:
         print(f"{robot.name}: IGP with assigned {result.problem}")
         print(igp_table(result, include_complex=args.all))

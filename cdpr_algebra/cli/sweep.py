@@ -13,10 +13,9 @@ when some point failed (its error is recorded) or is incomplete (failed homotopy
 
 from __future__ import annotations
 
-import json
 import sys
 
-from .common import INCOMPLETE
+from .common import INCOMPLETE, json_text
 
 
 def add_parser(subparsers) -> None:
@@ -48,7 +47,7 @@ def run(args) -> int:
                     certify=not args.no_certify, progress=not args.json)
     counts = summary_counts(args.out)
     if args.json:
-        print(json.dumps({**res.to_dict(), "written": counts}))
+        print(json_text({**res.to_dict(), "written": counts}))
     else:
         print(f"{robot.name}: {grid.kind} sweep over {' x '.join(f'{a.name} ({len(a.values)})' for a in grid.axes)}"
               f" = {grid.size} points; solved now {res.solved}, resumed {res.resumed}; in {args.out}: "

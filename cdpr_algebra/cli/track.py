@@ -22,12 +22,11 @@ proves the admissible equilibria of its incomplete subproblems by interval branc
 
 from __future__ import annotations
 
-import json
 import sys
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import INCOMPLETE, as_flags, dgp_lengths, finite, output_file
+from .common import INCOMPLETE, as_flags, dgp_lengths, finite, json_text, output_file
 
 PLOT_SUFFIXES = (".png", ".svg", ".pdf")  # --plot: the figure formats of matplotlib's Agg and vector backends
 
@@ -111,7 +110,7 @@ def run(args) -> int:
     with as_flags({"start": "--start-position"}):
         res = track(robot, traj, samples, start=start)
     if args.json:
-        print(json.dumps(res.to_dict()))
+        print(json_text(res.to_dict()))
     else:
         print(tracking_table(res, robot))
     if args.plot:

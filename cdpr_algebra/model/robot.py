@@ -33,6 +33,15 @@ def _is_number(x: Any) -> bool:
     return isinstance(x, (int, float)) and not isinstance(x, bool)
 
 
+MAX_MAGNITUDE = 1e100  # robot numbers beyond this would overflow double precision in squares and products of them
+
+
+def _magnitude(x: float, fieldname: str) -> None:
+    if abs(x) > MAX_MAGNITUDE:
+        raise CdprInputError(fieldname, f"{x:g} is beyond {MAX_MAGNITUDE:g}: squares and products of such numbers "
+                                        f"overflow double precision (choose other units)")
+
+
 def _vector(value: Any, fieldname: str, size: int = 3) -> np.ndarray:
     if isinstance(value, np.ndarray):
         value = value.tolist()
@@ -45,6 +54,7 @@ def _vector(value: Any, fieldname: str, size: int = 3) -> np.ndarray:
             raise CdprInputError(f"{fieldname}[{k}]", f"expected a number, got {x!r}")
         if not math.isfinite(float(x)):
             raise CdprInputError(f"{fieldname}[{k}]", f"expected a finite number, got {x!r}")
+        _magnitude(float(x), f"{fieldname}[{k}]")
     return np.array([float(x) for x in value], dtype=float)
 
 
@@ -89,7 +99,11 @@ class Robot:
             raise CdprInputError("load", f"expected a number, got {self.load!r}")
         load = float(self.load)
         if not math.isfinite(load) or load <= 0:
-            raise CdprInputError("load", f"expected a finite number > 0, got {self.load!r}")
+            raise CdprInputError("load", f"expected a finite number > 0, got {load:g}")
+        _magnitude(load, "load")
+        if load < 1.0 / MAX_MAGNITUDE:
+            raise CdprInputError("load", f"{load:g} is below {1.0 / MAX_MAGNITUDE:g}: tensions and their products "
+                                         f"underflow double precision (choose other units)")
         d = _vector(self.load_direction, "load_direction")
         nd = float(np.linalg.norm(d))
         if nd == 0.0:
@@ -100,7 +114,7 @@ class Robot:
             lengths = _vector(self.lengths, "lengths", size=len(base))
             for i, rho in enumerate(lengths):
                 if rho <= 0:
-                    raise CdprInputError(f"lengths[{i}]", f"cable lengths must be > 0, got {rho!r}")
+                    raise CdprInputError(f"lengths[{i}]", f"cable lengths must be > 0, got {float(rho):g}")
         if not isinstance(self.name, str):
             raise CdprInputError("name", f"expected a string, got {self.name!r}")
         scale = max(1.0, float(np.abs(base).max()), float(np.abs(platform).max()))
