@@ -155,7 +155,7 @@ def test_a_start_pose_that_is_not_an_equilibrium_is_refused(robot):
     res = dgp(robot, robot.lengths, certify=False)
     s = [s for s in res.solutions if s.stable][0]
     with pytest.raises(CdprInputError, match="start"):
-        track(robot, traj, start=(s.position + np.array([0.0, 0.0, -0.01]), s.rotation))
+        track(robot, traj, start=(s.position + np.array([0.0, 0.0, -0.05]), s.rotation))  # 4e-3 of its size
     ok = track(robot, traj, np.linspace(0, 1, 3), start=(s.position, s.rotation))
     assert ok.complete and np.allclose(ok.steps[0].position, s.position, atol=1e-9)
 
@@ -193,7 +193,7 @@ def test_animation_has_a_frame_per_state(tmp_path, capsys):
 
 
 def test_cli_start_pose(robot, capsys):
-    """Start from a pose given to the DGP table's 4 decimals (polished by Newton), or refuse one that is not near
+    """Start from a pose given to the DGP table's 3 decimals (polished by Newton), or refuse one that is not near
     an equilibrium, or an unstable one, naming --start-position."""
     sols = dgp(robot, robot.lengths, certify=False).solutions
     stable = [s for s in sols if s.stable][0]
@@ -201,8 +201,8 @@ def test_cli_start_pose(robot, capsys):
     from cdpr_algebra.model.pose import angles_from_matrix
 
     def args(s, dz=0.0):
-        p = np.round(s.position, 4) + [0, 0, dz]
-        a = np.round(angles_from_matrix(s.rotation), 6)
+        p = np.round(s.position, 3) + [0, 0, dz]
+        a = np.round(angles_from_matrix(s.rotation), 3)
         return ["--start-position", *map(str, p), "--start-angles", *map(str, a)]
 
     assert main(["track", ROBOT, "--to", "8", "10", "9.5", "--steps", "1", "--json"] + args(stable)) == 0

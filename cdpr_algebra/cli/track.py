@@ -48,7 +48,7 @@ def add_parser(subparsers) -> None:
                         "and prune, so that the default start (stable, lowest potential) is decided")
     p.add_argument("--start-position", nargs=3, type=finite("--start-position"), metavar=("X", "Y", "Z"),
                    help="start from the equilibrium at this pose (the platform frame's origin, as the DGP prints it; "
-                        "within 1e-4 of the robot's size: it is polished); default: the DGP's stable equilibrium of "
+                        "within 1e-3 of the robot's size: it is polished); default: the DGP's stable equilibrium of "
                         "lowest potential")
     p.add_argument("--start-angles", nargs=3, type=finite("--start-angles"), metavar=("PHI_X", "PHI_Y", "PHI_Z"),
                    help="orientation of the start pose, R = Rz Ry Rx, radians unless --degrees (default 0 0 0)")
