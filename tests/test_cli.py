@@ -103,3 +103,14 @@ def test_files_to_write_or_read_are_checked_before_any_work(tmp_path, capsys, ar
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert f"field '{field}'" in err and words in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["track", "examples/seed000_test1.toml", "--to", "7.6", "10", "9.5", "--range", "0", "2"], "--range"),
+    (["crosscheck", "examples/seed000_test1.toml", "--taut", "1", "2", "3", "--max-m", "2"], "--max-m"),
+    (["igp", "examples/seed004_table1.toml", "--position", "1", "2", "3", "--degrees"], "--degrees"),
+])
+def test_options_that_would_be_ignored_are_refused(capsys, argv, field):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert f"field '{field}'" in err and "Traceback" not in err

@@ -85,10 +85,13 @@ def test_text_form(results, tmp_path, capsys):
     ('{"solver": "me", "subproblems": []}', "--against"),  # nothing to compare is no agreement
     ("1 2 ; none\n1 2 ; [0, 1] [0, 1] [0, 1]\n", "r.txt line 2"),
     ("1 2 ; [0, 1] [0, 1] [0, 1]\n1 2 ; none\n", "r.txt line 2"),
+    ("1 2 ; [2, 1] [0, 1] [0, 1]\n", "r.txt line 1"),  # lo > hi: said so, not 'not a number'
+    ('[{"taut": [1, 2]}]', "--against"),  # JSON, not an object
 ])
 def test_bad_files_name_the_field(tmp_path, content, field):
-    f = tmp_path / ("r.json" if content.startswith("{") else "r.txt")
+    f = tmp_path / ("r.json" if content.startswith(("{", "[{")) else "r.txt")
     f.write_text(content)
     with pytest.raises(CdprInputError) as err:
         load_results(f, 3)
     assert err.value.field == field
+    assert not content.startswith("1 2 ; [2, 1]") or "lo <= hi" in str(err.value)

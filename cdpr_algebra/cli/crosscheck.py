@@ -40,7 +40,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("--lengths", nargs="+", type=finite("--lengths"), metavar="L",
                    help="cable lengths rho_1 .. rho_n (default: the robot file's)")
     p.add_argument("--taut", nargs="+", type=int, metavar="C", help="only this set of taut cables (numbers from 1)")
-    p.add_argument("--max-m", type=int, default=6, metavar="M", help="largest number of taut cables (default 6)")
+    p.add_argument("--max-m", type=int, default=None, metavar="M", help="largest number of taut cables (default 6)")
     p.add_argument("--against", metavar="FILE", help="another solver's results (JSON or text boxes, see "
                                                      "cdpr_algebra.comparison.external) instead of our interval solver")
     p.add_argument("--roots", metavar="FILE", help="another solver's complex roots of the --taut set's equations "
@@ -80,6 +80,10 @@ def run(args) -> int:
         if len(args.taut) > 6:
             raise CdprInputError("--taut", f"at most 6 taut cables, got {len(args.taut)}")
         sets = [tuple(sorted(c - 1 for c in args.taut))]
+    if args.max_m is not None and (args.taut is not None or args.against is not None or args.roots is not None):
+        raise CdprInputError("--max-m", "--max-m limits the taut sets of a whole cross-check: not with --taut, "
+                                        "--against or --roots")
+    args.max_m = 6 if args.max_m is None else args.max_m
     if args.max_m < 1:
         raise CdprInputError("--max-m", f"expected a number >= 1, got {args.max_m}")
 

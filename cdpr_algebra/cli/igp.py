@@ -64,6 +64,8 @@ def run(args) -> int:
     else:
         if args.exact:
             raise CdprInputError("--exact", "exact mode of the CLI is for the IGP with assigned orientation")
+        if args.degrees:
+            raise CdprInputError("--degrees", "--degrees goes with --orientation (a position has no angles)")
         from cdpr_algebra.igp.position import igp_position
 
         result = igp_position(robot, np.array(args.position))

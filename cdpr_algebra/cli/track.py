@@ -40,7 +40,7 @@ def add_parser(subparsers) -> None:
     p.add_argument("--trajectory", metavar="FILE", help="a table of lengths against t (CSV or JSON)")
     p.add_argument("--expressions", nargs="+", metavar="EXPR",
                    help="the lengths as expressions of t, one per cable (e.g. '7.5 + 2*sin(pi*t)')")
-    p.add_argument("--range", nargs=2, default=["0", "1"], metavar=("T0", "T1"),
+    p.add_argument("--range", nargs=2, default=None, metavar=("T0", "T1"),
                    help="the range of t for --expressions (numbers or constants like pi/2; default 0 1)")
     p.add_argument("--steps", type=int, default=10, metavar="N", help="report states at N + 1 evenly spaced t")
     p.add_argument("--settle", action="store_true",
@@ -72,12 +72,15 @@ def run(args) -> int:
     if len(given) != 1:
         raise CdprInputError(given[1] if len(given) > 1 else "--to",
                              "give one of --to L1 .. Ln, --trajectory FILE or --expressions E1 .. En")
+    if args.range is not None and args.expressions is None:
+        raise CdprInputError("--range", "--range goes with --expressions (t runs from 0 to 1 along --to and as the "
+                                        "--trajectory file says)")
     if args.expressions is not None:
         from cdpr_algebra.track.trajectory import from_expressions
 
         if args.lengths is not None:
             raise CdprInputError("--lengths", "the expressions give the start lengths")
-        traj = from_expressions(args.expressions, args.range, robot.n)
+        traj = from_expressions(args.expressions, args.range or ["0", "1"], robot.n)
     elif args.trajectory is not None:
         if args.lengths is not None:
             raise CdprInputError("--lengths", "the trajectory file gives the start lengths")

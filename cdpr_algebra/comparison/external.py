@@ -121,11 +121,14 @@ def load_results(path, n: int) -> tuple[str, tuple]:
         text = path.read_text(encoding="utf-8")
     except OSError as err:
         raise CdprInputError("--against", f"cannot read {path}: {err.strerror}") from None
-    if text.lstrip().startswith("{"):
+    if text.lstrip().startswith(("{", "[")) or path.suffix.lower() == ".json":
         try:
             data = json.loads(text)
         except json.JSONDecodeError as err:
             raise CdprInputError("--against", f"not valid JSON ({err.msg}, line {err.lineno})") from None
+        if not isinstance(data, dict):
+            raise CdprInputError("--against", f'expected a JSON object {{"solver", "subproblems"}}, got a '
+                                              f"{type(data).__name__}")
         subs = data.get("subproblems")
         if not isinstance(subs, list):
             raise CdprInputError("--against", 'expected a list "subproblems"')
@@ -170,9 +173,10 @@ def load_results(path, n: int) -> tuple[str, tuple]:
         if len(pairs) < 3:
             raise CdprInputError(where, f"expected 3 intervals [lo, hi] after ';', got {tail.strip()!r}")
         try:
-            groups[taut].append(_box([[float(a), float(b)] for a, b in pairs], where))
+            numbers = [[float(a), float(b)] for a, b in pairs]
         except ValueError:
             raise CdprInputError(where, f"not a number in {tail.strip()!r}") from None
+        groups[taut].append(_box(numbers, where))
     if not groups:
         raise CdprInputError("--against", "no result lines")
     return "text results", tuple(TheirSubproblem(t, len(b or ()), tuple(b or ())) for t, b in groups.items())
