@@ -149,3 +149,18 @@ def test_wrong_cable_count():
 
     with pytest.raises(CdprInputError, match="exactly 3 cables"):
         igp_orientation(robot, np.eye(3))
+
+
+def test_a_degenerate_case_none_of_the_special_sets_fits_is_undecided(capsys):
+    """Test 1's robot (seed 000) at the identity: p123 vanishes identically and none of the special sets of
+    Carricato 2013 App. A applies.  Not solved, so not 'empty': the result is undecided and the command exits 3."""
+    from pathlib import Path
+
+    from cdpr_algebra.cli.main import main
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "seed000_test1.toml"
+    res = igp_orientation(load_robot(path), np.eye(3))
+    assert res.solution_set is not None and res.solution_set.kind == "undecided" and res.status == "undecided"
+    assert res.to_dict()["status"] == "undecided" and not res.solutions
+    assert main(["igp", str(path), "--orientation", "0", "0", "0"]) == 3
+    assert "undecided" in capsys.readouterr().err

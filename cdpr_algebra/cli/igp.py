@@ -74,6 +74,9 @@ def run(args) -> int:
     else:
         print(f"{robot.name}: IGP with assigned {result.problem}")
         print(igp_table(result, include_complex=args.all))
+    if result.status == "undecided":
+        print(f"cdpr igp: undecided: {result.solution_set.description} (exit status 3)", file=sys.stderr)
+        return 3
     if result.status == "incomplete":
         print(f"cdpr igp: incomplete: {result.found} of the {result.generic_count} solutions found, the others lost "
               f"to rounding or at infinity here (not decided) (exit status 3)", file=sys.stderr)

@@ -285,8 +285,9 @@ def _special_set(prob: _Problem, tol) -> SolutionSet:
                 {"cables": [i + 1, j + 1], "slack_cable": h + 1,
                  "plane_point": _world_list(prob, prob.a[i]), "plane_normal": _dir_list(prob, pij)},
             )
-    return SolutionSet("empty", "p123 vanishes identically but no special set of Carricato 2013, App. A applies: no isolated "
-                                "solution (the case is flagged, not solved)", {"work_frame": _frame_dict(prob)})
+    return SolutionSet("undecided", "p123 vanishes identically but no special set of Carricato 2013, App. A applies: "
+                                    "the case is flagged, not solved (isolated solutions, a continuum or none: not "
+                                    "decided)", {"work_frame": _frame_dict(prob)})
 
 
 def _num(v):
@@ -427,14 +428,14 @@ def igp_orientation(robot: Robot, rotation, *, exact: bool = False, certify: boo
     if exact:
         minors = gen.minors_M_prime(*prob.params(), *Xw)
         if any(sp.simplify(m) != 0 for m in minors):
-            return done(sset=SolutionSet("empty", "exact check failed: a minor of M'(O) does not vanish"),
-                        msg="exact check FAILED")
+            return done(sset=SolutionSet("undecided", "exact check failed: a minor of M'(O) does not vanish at the "
+                                                      "point located"), msg="exact check FAILED")
         sol = make_solution(robot, np.array([float(v) for v in Gw]), np.array(prob.R.tolist(), dtype=float))
         return done([sol], None, f"exact: G = {list(Gw)}, all 15 minors of M'(O) vanish there")
     sol = make_solution(robot, Gw, prob.R)
     if sol.residual > 1e-8:
         sset2 = _special_set(prob, 1e-7)
-        if sset2.kind != "empty":
+        if sset2.kind not in ("empty", "undecided"):
             return done(sset=sset2, msg=sset2.kind.replace("_", " "))
         return done([sol], None, f"UNVERIFIED: equilibrium residual {sol.residual:.2e} after Newton polishing")
     return done([sol], None, "verified: equilibrium residual %.1e" % sol.residual)

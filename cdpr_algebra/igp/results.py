@@ -157,7 +157,8 @@ def make_solutions(robot, com_positions, rotations, euler_parameters=None, real_
 class SolutionSet:
     """A positive-dimensional or empty solution set of the IGP with assigned orientation (seed 004 App. A).
 
-    ``kind`` is one of 'vertical_line', 'cylinder_curve', 'planar_conic', 'crane', 'empty'; ``description``
+    ``kind`` is one of 'vertical_line', 'cylinder_curve', 'planar_conic', 'crane', 'empty' (proven), or 'undecided'
+    (a degenerate case none of these fits: not solved); ``description``
     says it in words; ``data`` holds its parameters (e.g. the (x, y) of a vertical line of G, the conic's
     coefficients), all JSON-ready.
     """
@@ -189,11 +190,12 @@ class IGPResult:
     @property
     def status(self) -> str:
         """'solution set' (no isolated solution: ``solution_set`` describes the continuum or says it is empty),
+        'undecided' (a degenerate case not solved: ``solution_set.kind`` 'undecided'),
         'incomplete' (fewer solutions found than ``generic_count``: the others lost to rounding, or at infinity for
         this instance -- not decided), 'complete' (every real solution certified), or 'uncertified' (some real
         solution without a certificate)."""
         if self.solution_set is not None:
-            return "solution set"
+            return "undecided" if self.solution_set.kind == "undecided" else "solution set"
         if self.generic_count is not None and self.found is not None and self.found < self.generic_count:
             return "incomplete"
         return "complete" if all(s.certified for s in self.real_solutions) else "uncertified"
