@@ -100,7 +100,7 @@ def test_cli_argument_errors(capsys):
 def test_cli_numbers_beyond_1e100_are_refused(capsys):
     with pytest.raises(SystemExit) as e:
         main(["igp", "examples/seed004_table1.toml", "--position", "1e200", "0", "0"])
-    assert e.value.code == 2 and "beyond 1e100" in capsys.readouterr().err
+    assert e.value.code == 2 and "beyond 1e+100" in capsys.readouterr().err
 
 
 def test_json_of_results_is_strict_json():

@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.model.errors import CdprInputError, check_magnitude
 
 __all__ = ["INCOMPLETE", "Parser", "finite", "dgp_lengths", "as_flags", "print_incomplete", "output_file",
            "json_text"]
@@ -67,9 +67,10 @@ def finite(name):
             raise argparse.ArgumentTypeError(f"{name}: expected a number, got {text!r}") from None
         if not math.isfinite(v):
             raise argparse.ArgumentTypeError(f"{name}: expected a finite number, got {text!r}")
-        if abs(v) > 1e100:  # as the robot's numbers (model.robot.MAX_MAGNITUDE): squares would overflow
-            raise argparse.ArgumentTypeError(f"{name}: {text} is beyond 1e100: squares and products of such numbers "
-                                             f"overflow double precision (choose other units)")
+        try:
+            check_magnitude(v, name)
+        except CdprInputError as err:
+            raise argparse.ArgumentTypeError(f"{name}: {err.problem}") from None
         return v
     return conv
 

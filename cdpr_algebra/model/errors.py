@@ -1,4 +1,15 @@
-"""Errors raised on bad input: each names the field at fault and the problem."""
+"""Errors raised on bad input: each names the field at fault and the problem; the largest magnitude a number of
+the input may have."""
+
+MAX_MAGNITUDE = 1e100  # robot and command-line numbers beyond this would overflow double precision in squares and
+# products of them (a load of 1e300 gave residual inf; lengths of 1e308 an 'oo' in exported equations)
+
+
+def check_magnitude(x: float, field: str) -> None:
+    """A :class:`CdprInputError` naming ``field`` when |x| > :data:`MAX_MAGNITUDE`."""
+    if abs(x) > MAX_MAGNITUDE:
+        raise CdprInputError(field, f"{x:g} is beyond {MAX_MAGNITUDE:g}: squares and products of such numbers "
+                                    f"overflow double precision (choose other units)")
 
 
 class CdprInputError(ValueError):

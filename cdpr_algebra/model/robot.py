@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import CdprInputError
+from .errors import MAX_MAGNITUDE, CdprInputError, check_magnitude
 
 ROBOT_KEYS = ("name", "base", "platform", "com", "load", "load_direction", "lengths")
 REQUIRED_KEYS = ("base", "platform", "com", "load")
@@ -31,15 +31,6 @@ REQUIRED_KEYS = ("base", "platform", "com", "load")
 
 def _is_number(x: Any) -> bool:
     return isinstance(x, (int, float)) and not isinstance(x, bool)
-
-
-MAX_MAGNITUDE = 1e100  # robot numbers beyond this would overflow double precision in squares and products of them
-
-
-def _magnitude(x: float, fieldname: str) -> None:
-    if abs(x) > MAX_MAGNITUDE:
-        raise CdprInputError(fieldname, f"{x:g} is beyond {MAX_MAGNITUDE:g}: squares and products of such numbers "
-                                        f"overflow double precision (choose other units)")
 
 
 def _vector(value: Any, fieldname: str, size: int = 3) -> np.ndarray:
@@ -54,7 +45,7 @@ def _vector(value: Any, fieldname: str, size: int = 3) -> np.ndarray:
             raise CdprInputError(f"{fieldname}[{k}]", f"expected a number, got {x!r}")
         if not math.isfinite(float(x)):
             raise CdprInputError(f"{fieldname}[{k}]", f"expected a finite number, got {x!r}")
-        _magnitude(float(x), f"{fieldname}[{k}]")
+        check_magnitude(float(x), f"{fieldname}[{k}]")
     return np.array([float(x) for x in value], dtype=float)
 
 
@@ -100,7 +91,7 @@ class Robot:
         load = float(self.load)
         if not math.isfinite(load) or load <= 0:
             raise CdprInputError("load", f"expected a finite number > 0, got {load:g}")
-        _magnitude(load, "load")
+        check_magnitude(load, "load")
         if load < 1.0 / MAX_MAGNITUDE:
             raise CdprInputError("load", f"{load:g} is below {1.0 / MAX_MAGNITUDE:g}: tensions and their products "
                                          f"underflow double precision (choose other units)")
