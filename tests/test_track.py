@@ -148,6 +148,9 @@ def test_trajectory_files_with_bad_rows(tmp_path, robot):
     g.write_text(json.dumps({"t": [0, 1], "lengths": [[7.5, 10, 9.5], [8, 10]]}))
     with pytest.raises(CdprInputError, match="row 2"):
         load_trajectory(g, robot.n)
+    g.write_text(json.dumps({"t": [0, 1], "lengths": [[7.5, 10, 9.5]]}))  # was cut to 1 row by zip
+    with pytest.raises(CdprInputError, match="2 values of t but 1 rows of lengths"):
+        load_trajectory(g, robot.n)
 
 
 def test_a_start_pose_that_is_not_an_equilibrium_is_refused(robot):

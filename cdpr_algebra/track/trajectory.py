@@ -99,6 +99,8 @@ def load_trajectory(path, n: int) -> LengthTrajectory:
                 raise CdprInputError("--trajectory", 'every row must be {"t": .., "lengths": [..]}') from None
         else:
             raise CdprInputError("--trajectory", "expected an object or a list of rows")
+        if isinstance(t, list) and isinstance(L, list) and len(t) != len(L):  # zip would drop the extra ones
+            raise CdprInputError(field, f"{len(t)} values of t but {len(L)} rows of lengths")
         try:
             rows = [[float(a)] + [float(v) for v in b] for a, b in zip(t, L)]
         except (TypeError, ValueError):
