@@ -9,8 +9,9 @@ import math
 from cdpr_algebra.model.errors import CdprInputError, check_magnitude
 
 __all__ = ["INCOMPLETE", "Parser", "finite", "dgp_lengths", "as_flags", "print_incomplete", "output_file",
-           "json_text"]
+           "json_text", "FIGURE_SUFFIXES"]
 
+FIGURE_SUFFIXES = (".png", ".svg", ".pdf")  # pictures saved by matplotlib (Agg and its vector backends)
 INCOMPLETE = 3  # exit status: a result not proven complete (failed paths, uncertified endpoints), said on stderr
 
 

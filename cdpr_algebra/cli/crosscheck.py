@@ -31,7 +31,7 @@ import sys
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import finite, json_text
+from .common import INCOMPLETE, finite, json_text
 
 
 def add_parser(subparsers) -> None:
@@ -83,9 +83,9 @@ def run(args) -> int:
     if args.max_m is not None and (args.taut is not None or args.against is not None or args.roots is not None):
         raise CdprInputError("--max-m", "--max-m limits the taut sets of a whole cross-check: not with --taut, "
                                         "--against or --roots")
-    args.max_m = 6 if args.max_m is None else args.max_m
-    if args.max_m < 1:
-        raise CdprInputError("--max-m", f"expected a number >= 1, got {args.max_m}")
+    max_m = 6 if args.max_m is None else args.max_m
+    if max_m < 1:
+        raise CdprInputError("--max-m", f"expected a number >= 1, got {max_m}")
 
     if args.against is not None:
         if args.roots is not None:
@@ -103,7 +103,7 @@ def run(args) -> int:
 
     if args.jobs is not None and args.jobs < 1:
         raise CdprInputError("--jobs", f"expected a number >= 1, got {args.jobs}")
-    result = crosscheck(robot, lengths, sets=sets, max_m=args.max_m, progress=progress, jobs=args.jobs,
+    result = crosscheck(robot, lengths, sets=sets, max_m=max_m, progress=progress, jobs=args.jobs,
                         extended=args.extended_precision)
     if args.json:
         print(json_text(result.to_dict(), indent=2))
@@ -156,4 +156,4 @@ def _roots(args, robot, lengths, sets) -> int:
         print(roots_report(c))
     if c.agree is None:
         print(f"cdpr crosscheck: {c.compared}", file=sys.stderr)
-    return {True: 0, False: 1, None: 3}[c.agree]
+    return {True: 0, False: 1, None: INCOMPLETE}[c.agree]

@@ -7,7 +7,7 @@ import sys
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import finite, json_text
+from .common import INCOMPLETE, finite, json_text
 
 
 def add_parser(subparsers) -> None:
@@ -75,15 +75,13 @@ def run(args) -> int:
         print(f"{robot.name}: IGP with assigned {result.problem}")
         print(igp_table(result, include_complex=args.all))
     if result.status == "undecided":
-        print(f"cdpr igp: undecided: {result.solution_set.description} (exit status 3)", file=sys.stderr)
-        return 3
-    if result.status == "incomplete":
-        print(f"cdpr igp: incomplete: {result.found} of the {result.generic_count} solutions found, the others lost "
-              f"to rounding or at infinity here (not decided) (exit status 3)", file=sys.stderr)
-        return 3
-    if result.status == "uncertified":
-        n = sum(1 for s in result.real_solutions if not s.certified)
-        print(f"cdpr igp: uncertified: {n} real solution(s) without an interval certificate (exit status 3)",
-              file=sys.stderr)
-        return 3
-    return 0
+        why = result.solution_set.description
+    elif result.status == "incomplete":
+        why = (f"{result.found} of the {result.generic_count} solutions found, the others lost to rounding or at "
+               f"infinity here (not decided)")
+    elif result.status == "uncertified":
+        why = f"{sum(not s.certified for s in result.real_solutions)} real solution(s) without an interval certificate"
+    else:
+        return 0
+    print(f"cdpr igp: {result.status}: {why} (exit status {INCOMPLETE})", file=sys.stderr)
+    return INCOMPLETE

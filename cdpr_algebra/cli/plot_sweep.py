@@ -19,9 +19,9 @@ def add_parser(subparsers) -> None:
 def run(args) -> int:
     from cdpr_algebra.sweep.pictures import save_sweep_figure
 
-    from .common import output_file
+    from .common import FIGURE_SUFFIXES, output_file
 
-    output_file(args.out, "--out", (".png", ".svg", ".pdf"))
+    output_file(args.out, "--out", FIGURE_SUFFIXES)
 
     save_sweep_figure(args.dir, args.out, args.value)
     print(f"wrote {args.out}")

@@ -26,9 +26,7 @@ import sys
 
 from cdpr_algebra.model.errors import CdprInputError
 
-from .common import INCOMPLETE, as_flags, dgp_lengths, finite, json_text, output_file
-
-PLOT_SUFFIXES = (".png", ".svg", ".pdf")  # --plot: the figure formats of matplotlib's Agg and vector backends
+from .common import FIGURE_SUFFIXES, INCOMPLETE, as_flags, dgp_lengths, finite, json_text, output_file
 
 
 def add_parser(subparsers) -> None:
@@ -92,7 +90,7 @@ def run(args) -> int:
     if args.animate:
         output_file(args.animate, "--animate", (".gif", ".mp4"))
     if args.plot:
-        output_file(args.plot, "--plot", PLOT_SUFFIXES)
+        output_file(args.plot, "--plot", FIGURE_SUFFIXES)
     samples = np.linspace(traj.start, traj.end, args.steps + 1)
     start = None
     if args.start_angles is not None and args.start_position is None:

@@ -152,6 +152,7 @@ def load_results(path, n: int) -> tuple[str, tuple]:
             out.append(TheirSubproblem(taut, count, boxes))
         return str(data.get("solver", "unnamed solver")), tuple(out)
     groups: dict = {}
+    nones: set = set()  # taut sets a line says have no equilibrium
     for k, line in enumerate(text.splitlines()):
         line = line.split("#", 1)[0].strip()
         if not line:
@@ -162,13 +163,12 @@ def load_results(path, n: int) -> tuple[str, tuple]:
         head, tail = line.split(";", 1)
         taut = _taut(head.replace(",", " ").split(), n, where)
         groups.setdefault(taut, [])
-        if tail.strip().lower() == "none":
-            if groups[taut]:
-                raise CdprInputError(where, f"taut set {list(taut)} has boxes and 'none'")
-            groups[taut] = None
-            continue
-        if groups[taut] is None:
+        said_none = tail.strip().lower() == "none"
+        if (said_none and groups[taut]) or (not said_none and taut in nones):
             raise CdprInputError(where, f"taut set {list(taut)} has boxes and 'none'")
+        if said_none:
+            nones.add(taut)
+            continue
         pairs = re.findall(r"\[\s*([^,\]\s]+)\s*,\s*([^\]\s]+)\s*\]", tail)
         if len(pairs) < 3:
             raise CdprInputError(where, f"expected 3 intervals [lo, hi] after ';', got {tail.strip()!r}")
@@ -179,7 +179,7 @@ def load_results(path, n: int) -> tuple[str, tuple]:
         groups[taut].append(_box(numbers, where))
     if not groups:
         raise CdprInputError("--against", "no result lines")
-    return "text results", tuple(TheirSubproblem(t, len(b or ()), tuple(b or ())) for t, b in groups.items())
+    return "text results", tuple(TheirSubproblem(t, len(b), tuple(b)) for t, b in groups.items())
 
 
 def _inside(box, p, slack) -> bool:

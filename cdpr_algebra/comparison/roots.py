@@ -214,7 +214,9 @@ def match_roots(A, B) -> tuple:
 
 
 def _their_roots_in_our_order(theirs: TheirRoots, m: int) -> np.ndarray:
-    ours = ["px", "py", "pz", "ux", "uy", "uz", "vx", "vy", "vz", "wx", "wy", "wz"] + [f"lam{i + 1}" for i in range(m)]
+    from cdpr_algebra.model.taut_equations import taut_unknowns
+
+    ours = taut_unknowns(m)
     missing = [v for v in ours if v not in theirs.variables]
     extra = [v for v in theirs.variables if v not in ours]
     if missing or extra:

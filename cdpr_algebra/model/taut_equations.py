@@ -24,6 +24,12 @@ def _cross(a, b):
     return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 
 
+def taut_unknowns(m: int) -> list:
+    """The names of the unknowns of :func:`taut_family` for m taut cables, in order: px py pz (the platform frame's
+    origin), ux .. wz (the columns of R), lam1 .. lamm (tau_i / rho_i)."""
+    return ["px", "py", "pz", "ux", "uy", "uz", "vx", "vy", "vz", "wx", "wy", "wz"] + [f"lam{i}" for i in range(1, m + 1)]
+
+
 def taut_family(m: int) -> PolynomialSystem:
     """The parameterized system for m taut cables (cached)."""
     if m in _FAMILIES:
@@ -32,11 +38,8 @@ def taut_family(m: int) -> PolynomialSystem:
         raise ValueError("the homotopy formulation covers m = 2 .. 6 taut cables (m = 1 is analytic)")
     import sympy as sp
 
-    p = sp.symbols("px py pz")
-    u = sp.symbols("ux uy uz")
-    v = sp.symbols("vx vy vz")
-    w = sp.symbols("wx wy wz")
-    lam = sp.symbols(f"lam1:{m + 1}")
+    xs = sp.symbols(taut_unknowns(m))
+    p, u, v, w, lam = xs[0:3], xs[3:6], xs[6:9], xs[9:12], xs[12:]
     A = [sp.symbols(f"A{i}x A{i}y A{i}z") for i in range(1, m + 1)]
     r2 = sp.symbols(f"rho2_1:{m + 1}")
     b = [sp.symbols(f"b{i}x b{i}y b{i}z") for i in range(1, m + 1)]
@@ -58,7 +61,7 @@ def taut_family(m: int) -> PolynomialSystem:
         c = _cross(B[i], A[i])
         mom = [mom[k] + lam[i] * c[k] for k in range(3)]
     eqs += mom
-    xs = list(p) + list(u) + list(v) + list(w) + list(lam)
+    xs = list(xs)
     ps = [c for a in A for c in a] + list(r2) + [c for bi in b for c in bi] + list(g) + list(f)
     fam = PolynomialSystem([sp.expand(e) for e in eqs], xs, ps, name=f"dgp_{m}_taut")
     _FAMILIES[m] = fam
