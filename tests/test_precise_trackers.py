@@ -174,3 +174,36 @@ def test_precise_cauchy_endgame_on_a_double_root_and_a_regular_one():
     lim = precise_cauchy_endgame(hom, precise, np.array([np.sqrt(a), b * np.sqrt(a)]), t0, o, tr)
     assert lim.converged and lim.winding == 1
     assert np.abs(lim.x - np.array([3, 6])).max() <= 1e-8
+
+
+def test_double_double_products_are_exact_pairs():
+    """The fused multiply-add's two-product (double_double._two_prod): p + e equals a b exactly (rationals) with
+    p = fl(a b), over operands of very different magnitudes; a complex double-double product agrees with the exact
+    one to the 2^-100 of double-double."""
+    from fractions import Fraction
+
+    import numba as nb
+
+    from cdpr_algebra.homotopy.double_double import _two_prod, cc_mul
+
+    @nb.njit
+    def products(a, b, p, e):
+        for k in range(a.shape[0]):
+            p[k], e[k] = _two_prod(a[k], b[k])
+
+    rng = np.random.default_rng(11)
+    a = rng.standard_normal(2000) * 10.0 ** rng.integers(-120, 120, 2000)
+    b = rng.standard_normal(2000) * 10.0 ** rng.integers(-120, 120, 2000)
+    p, e = np.empty(2000), np.empty(2000)
+    products(a, b, p, e)
+    assert np.array_equal(p, a * b)
+    assert all(Fraction(pk) + Fraction(ek) == Fraction(ak) * Fraction(bk) for ak, bk, pk, ek in zip(a, b, p, e))
+    assert np.count_nonzero(e) > 1000  # the errors are not trivially 0
+
+    x, y = (1 / 3, 1e-17 / 7, -2 / 9, 3e-18 / 11), (5 / 7, -1e-17 / 3, 1 / 13, 2e-18)
+    X = (Fraction(x[0]) + Fraction(x[1]), Fraction(x[2]) + Fraction(x[3]))
+    Y = (Fraction(y[0]) + Fraction(y[1]), Fraction(y[2]) + Fraction(y[3]))
+    re, im = X[0] * Y[0] - X[1] * Y[1], X[0] * Y[1] + X[1] * Y[0]
+    z = nb.njit(lambda u, v: cc_mul(u, v))(x, y)
+    assert abs(Fraction(z[0]) + Fraction(z[1]) - re) <= abs(re) * Fraction(1, 2 ** 100)
+    assert abs(Fraction(z[2]) + Fraction(z[3]) - im) <= abs(im) * Fraction(1, 2 ** 100)
