@@ -6,6 +6,8 @@ measured): double precision may not reach it.  What is promised, and checked: th
 is never dropped silently because it is large; and where the paths all finish, it is returned.
 """
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -13,14 +15,25 @@ from cdpr_algebra.dgp.normalization import normalized_coordinates, normalized_pr
 from cdpr_algebra.dgp.solve import solve_taut_set
 from large_forces import large_force_robot, matches, root_of_the_robot_system, root_of_the_solved_system
 
-CASES = [(3, 1e2), (3, 1e4), (3, 1e6), (6, 1e2), (6, 1e4), (6, 1e6),
+# (3, 1e2) is the robot of test_moderate_internal_forces_are_found: one solve (solved_without_certificates) and one
+# worker for both
+SHARED = pytest.mark.xdist_group("large_forces_3_1e2")
+CASES = [pytest.param(3, 1e2, marks=SHARED), (3, 1e4), (3, 1e6), (6, 1e2), (6, 1e4), (6, 1e6),
          pytest.param(4, 1e2, marks=pytest.mark.slow), pytest.param(4, 1e6, marks=pytest.mark.slow),
          pytest.param(5, 1e2, marks=pytest.mark.slow), pytest.param(5, 1e6, marks=pytest.mark.slow)]
 
 
+@functools.cache
+def solved_without_certificates(m, K, seed):
+    """(robot, p, R, tau, sub, sols): large_force_robot(m, K, seed) and its taut set of all m cables solved without
+    certificates (a cache: two tests read the same ~30-90 s solve)."""
+    robot, p, R, tau = large_force_robot(m, K, seed)
+    return (robot, p, R, tau, *solve_taut_set(robot, robot.lengths, tuple(range(m)), certify=False))
+
+
 @pytest.mark.parametrize("m, K", CASES)
 def test_large_internal_forces_are_found_or_flagged(m, K):
-    robot, p, R, tau = large_force_robot(m, K, 100 + m)
+    robot, p, R, tau, sub, sols = solved_without_certificates(m, K, 100 + m)
     Q = robot.load
     B = p + robot.platform @ R.T
     U = (robot.base - B) / robot.lengths[:, None]
@@ -31,7 +44,6 @@ def test_large_internal_forces_are_found_or_flagged(m, K):
     assert np.abs(tau @ U + Q * robot.load_direction).max() <= 1e-9 * scale
     mom = sum(t * np.cross(b, u) for t, b, u in zip(tau, B, U)) + np.cross(G, Q * robot.load_direction)
     assert np.abs(mom).max() <= 1e-9 * scale * robot.size
-    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(m)), certify=False)
     assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
     # the equilibrium as constructed, or as the root of the system solved (its data rounded to doubles: with
     # condition numbers ~1e13 the two differ by ~1e-3), or of the robot's own system
@@ -65,10 +77,11 @@ def test_ill_conditioned_equilibrium_is_polished_to_the_robots_root_and_certifie
     assert not matches(s, *solved, robot.size)
 
 
+@SHARED
 def test_moderate_internal_forces_are_found():
-    """K = 100 with three cables: the paths finish and the equilibrium is returned with its tensions."""
-    robot, p, R, tau = large_force_robot(3, 1e2, 103)
-    sub, sols = solve_taut_set(robot, robot.lengths, (0, 1, 2), certify=False)
+    """K = 100 with three cables: the equilibrium is returned with its tensions (4 of the 156 paths fail here,
+    measured in the thirtieth session: elsewhere, not on the equilibrium's path)."""
+    robot, p, R, tau, sub, sols = solved_without_certificates(3, 1e2, 103)
     hits = [s for s in sols if np.max(np.abs(s.position - p)) <= 1e-6 * robot.size]
     assert len(hits) == 1 and np.allclose(hits[0].tensions, tau, rtol=1e-6)
 
