@@ -250,3 +250,23 @@ def test_pair_of_condition_1e14_settles_the_last_two_paths(monkeypatch):
     monkeypatch.setattr(U, "MAX_CONDITION", 1e14)
     sub, _ = solve_taut_set(robot, robot.lengths, cables, certify=False)
     assert not sub.complete and sub.outcomes["failed"] == 2
+
+
+def test_tension_only_growth_in_the_study_run_is_not_at_infinity():
+    """m = 3, K = 1e6 (the robots of benchmarks/bench_large_forces.py --m 3 --K 1e6): the equilibrium (|lam| ~ 2e6 in
+    the normalized system, a regular root) is one of a near-double pair whose two paths, tracked in Study parameters,
+    circle the pair's branch point at every radius the precise endgame reaches: pose steady, |lam| ~ t^-1/2.  The
+    Study run put them at infinity ((g, lam) unbounded) without the test that the taut system's paths get
+    (dgp.tension_infinity), and all four robots said complete without their equilibrium (thirtieth session).  Now
+    those paths fail and are settled on the roots Newton's method reaches (dgp.unheld_roots): for seed 302 the
+    equilibrium is returned, certified, and the subproblem complete; seed 301 returns it or says incomplete."""
+    robot, p, R, tau = large_force_robot(3, 1e6, 302)
+    cables = (0, 1, 2)
+    sub, sols = solve_taut_set(robot, robot.lengths, cables, certify=True)
+    assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
+    roots = [root_of_the_solved_system(robot, cables, p, R, tau), root_of_the_robot_system(robot, cables, p, R, tau)]
+    want = [(p, R, tau)] + [r for r in roots if r is not None]
+    hits = [s for s in sols if any(matches(s, *w, robot.size) for w in want)]
+    assert len(hits) == 1 and hits[0].certified and sub.complete
+    assert tau.max() >= 0.5e6 * robot.load  # the tensions are as built
+    _returned_or_incomplete(3, 1e6, 301)

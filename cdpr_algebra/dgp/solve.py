@@ -456,14 +456,17 @@ def _track(m, target, seed, gamma, options=None, start=None):
 
     estimates = {}  # the Study run's last points of the paths it left failed (or whose endpoints it refused)
     if STUDY_FIRST:
-        res = track_study_first(fast_family(m), m, p_gen, X_gen, target, seed, gamma, options,
-                                lambda rows: track_taut(rows, detour=False), estimates)
+        # the Study run's paths put at infinity too (its precise endgame's block verdict: (g, lam) unbounded)
+        res = tension_infinity_undecided(track_study_first(fast_family(m), m, p_gen, X_gen, target, seed, gamma,
+                                                           options, lambda rows: track_taut(rows, detour=False),
+                                                           estimates), m, sampled_only=True)
         if options.retry_mpmath and any(p.status in FAILURES for p in res.track.paths):
             res, _ = _rescue_last_failed_paths(m, target, res, seed, gamma, options, start)
     else:
         res = track_taut(np.arange(len(X_gen)))
         if STUDY_RETRACK:
             res, _ = retrack_failed_in_study(fast_family(m), res, m, p_gen, X_gen, target, seed, gamma, options)
+            res = tension_infinity_undecided(res, m, sampled_only=True)
     if UNHELD_ROOTS and any(p.status in FAILURES for p in res.track.paths):
         left = [i for i, p in enumerate(res.track.paths) if p.status in FAILURES and i in estimates]
         res, _ = _settle_on_unheld_roots(m, target, res, options,
