@@ -14,8 +14,9 @@ that :func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source` gives the ope
 (``cc_mul``: complex times complex, ``rc_add``: real plus complex, ``r2c``; :data:`OPERATIONS`; the loads and
 stores of a rewritten evaluator are those of the interval kernels, whose arrays have the same layout), so the
 generated double-double residual of a system is the mechanical rewrite of its float one.  Products use the fused
-multiply-add for the exact error of a product (the pair of Dekker's splitting), sums Knuth's two-sum (Dekker 1971; the "sloppy" addition of Hida, Li and
-Bailey's QD library: relative error a few units of 2^-104 barring cancellation of the two operands' leading parts).
+multiply-add for the exact error of a product (the pair of Dekker's splitting, 1971), sums Knuth's two-sum (the
+"sloppy" addition of Hida, Li and Bailey's QD library: relative error a few units of 2^-104 barring cancellation of
+the two operands' leading parts).
 """
 
 from __future__ import annotations
