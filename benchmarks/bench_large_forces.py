@@ -36,7 +36,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 def main(argv=None):
     from cdpr_algebra.dgp.solve import default_options, solve_taut_set
-    from large_forces import large_force_robot, matches, root_of_the_robot_system, root_of_the_solved_system
+    from large_forces import equilibrium_hits, large_force_robot
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--m", type=int, nargs="+", default=[3, 4, 5, 6])
@@ -56,11 +56,7 @@ def main(argv=None):
                 robot, p, R, tau = large_force_robot(m, K, seed + 10 * m)
                 cables = tuple(range(m))
                 sub, sols = solve_taut_set(robot, robot.lengths, cables, options=options)
-                roots = [root_of_the_solved_system(robot, cables, p, R, tau),
-                         root_of_the_robot_system(robot, cables, p, R, tau)]
-                root = roots[0]
-                want = [(p, R, tau)] + [r for r in roots if r is not None]
-                hits = [s for s in sols if any(matches(s, *w, robot.size) for w in want)]
+                hits, root = equilibrium_hits(sols, robot, cables, p, R, tau)
                 found = bool(hits)
                 certified += any(s.certificate is not None and s.certificate.certified for s in hits)
                 kind = "found" if found else ("flagged" if not sub.complete else "missed")

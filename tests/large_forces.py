@@ -183,3 +183,14 @@ def matches(s, p, R, tau, size) -> bool:
     relative."""
     return (np.max(np.abs(s.position - p)) <= 1e-6 * size and np.max(np.abs(s.rotation - R)) <= 1e-6
             and np.allclose(s.tensions, tau, rtol=1e-6))
+
+
+def equilibrium_hits(sols, robot, cables, p, R, tau) -> tuple:
+    """(the DGP solutions ``sols`` of the 0-based taut set ``cables`` that are the equilibrium (p, R, tau) -- as
+    constructed, as the root of the system the homotopy solved (:func:`root_of_the_solved_system`: with condition
+    numbers ~1e13 the two differ by ~1e-3) or as the root of the robot's own system -- by :func:`matches`; the root of
+    the solved system, None when 60-digit Newton does not reach it)."""
+    solved = root_of_the_solved_system(robot, cables, p, R, tau)
+    roots = [solved, root_of_the_robot_system(robot, cables, p, R, tau)]
+    want = [(p, R, tau)] + [r for r in roots if r is not None]
+    return [s for s in sols if any(matches(s, *w, robot.size) for w in want)], solved

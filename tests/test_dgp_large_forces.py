@@ -13,7 +13,8 @@ import pytest
 
 from cdpr_algebra.dgp.normalization import normalized_coordinates, normalized_problem, world_coordinates
 from cdpr_algebra.dgp.solve import solve_taut_set
-from large_forces import large_force_robot, matches, root_of_the_robot_system, root_of_the_solved_system
+from large_forces import (equilibrium_hits, large_force_robot, matches, root_of_the_robot_system,
+                          root_of_the_solved_system)
 
 # (3, 1e2) is the robot of test_moderate_internal_forces_are_found: one solve (solved_without_certificates) and one
 # worker for both
@@ -45,12 +46,7 @@ def test_large_internal_forces_are_found_or_flagged(m, K):
     mom = sum(t * np.cross(b, u) for t, b, u in zip(tau, B, U)) + np.cross(G, Q * robot.load_direction)
     assert np.abs(mom).max() <= 1e-9 * scale * robot.size
     assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
-    # the equilibrium as constructed, or as the root of the system solved (its data rounded to doubles: with
-    # condition numbers ~1e13 the two differ by ~1e-3), or of the robot's own system
-    roots = [root_of_the_solved_system(robot, tuple(range(m)), p, R, tau),
-             root_of_the_robot_system(robot, tuple(range(m)), p, R, tau)]
-    want = [(p, R, tau)] + [r for r in roots if r is not None]
-    found = len([s for s in sols if any(matches(s, *w, robot.size) for w in want)]) == 1
+    found = len(equilibrium_hits(sols, robot, tuple(range(m)), p, R, tau)[0]) == 1
     # flagged: failed paths, or regular endpoints not proven roots
     assert found or not sub.complete, (sub.outcomes, [s.position for s in sols])
     if sub.complete:
@@ -264,9 +260,7 @@ def test_tension_only_growth_in_the_study_run_is_not_at_infinity():
     cables = (0, 1, 2)
     sub, sols = solve_taut_set(robot, robot.lengths, cables, certify=True)
     assert sum(sub.outcomes.values()) == sub.paths == sub.generic_count
-    roots = [root_of_the_solved_system(robot, cables, p, R, tau), root_of_the_robot_system(robot, cables, p, R, tau)]
-    want = [(p, R, tau)] + [r for r in roots if r is not None]
-    hits = [s for s in sols if any(matches(s, *w, robot.size) for w in want)]
+    hits, _ = equilibrium_hits(sols, robot, cables, p, R, tau)
     assert len(hits) == 1 and hits[0].certified and sub.complete
     assert tau.max() >= 0.5e6 * robot.load  # the tensions are as built
     _returned_or_incomplete(3, 1e6, 301)

@@ -32,10 +32,10 @@ def tension_infinity_undecided(res, m, sampled_only: bool = False):
     (the rotation at infinity) and keep their start point as endpoint.  Its paths that the precise endgame put at
     infinity because (g, lam) grow (``block_at_infinity``) were not tested here until the thirtieth session: on
     robots built around an equilibrium with tensions 1e6 times the load (benchmarks/bench_large_forces.py --m 3
-    --K 1e6, seeds 300-303, i.e. robot seeds 330-333) two such paths (winding number 2, pose steady, |lam| ~ t^-1/2) per robot were at
-    infinity, every subproblem complete and the equilibrium missing; now they fail, 2 of the 4 equilibria are
-    found (the failed paths settled on the roots Newton's method reaches, :mod:`.unheld_roots`), the other 2
-    robots say incomplete."""
+    --K 1e6, seeds 300-303, i.e. robot seeds 330-333) two such paths (winding number 2, pose steady, |lam| ~
+    t^-1/2) per robot were at infinity, every subproblem complete and the equilibrium missing; now they fail, 2 of
+    the 4 equilibria are found (the failed paths settled on the roots Newton's method reaches,
+    :mod:`.unheld_roots`), the other 2 robots say incomplete."""
     paths = list(res.track.paths)
 
     def pose_stays_finite(p):

@@ -27,7 +27,8 @@ def _cross(a, b):
 def taut_unknowns(m: int) -> list:
     """The names of the unknowns of :func:`taut_family` for m taut cables, in order: px py pz (the platform frame's
     origin), ux .. wz (the columns of R), lam1 .. lamm (tau_i / rho_i)."""
-    return ["px", "py", "pz", "ux", "uy", "uz", "vx", "vy", "vz", "wx", "wy", "wz"] + [f"lam{i}" for i in range(1, m + 1)]
+    pose = ["px", "py", "pz", "ux", "uy", "uz", "vx", "vy", "vz", "wx", "wy", "wz"]
+    return pose + [f"lam{i}" for i in range(1, m + 1)]
 
 
 def taut_family(m: int) -> PolynomialSystem:
