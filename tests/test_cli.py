@@ -114,3 +114,31 @@ def test_options_that_would_be_ignored_are_refused(capsys, argv, field):
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert f"field '{field}'" in err and "Traceback" not in err
+
+
+def test_igp_all_says_how_complex_lengths_are_measured(capsys):
+    """--all lists the complex roots of the assigned-position IGP; their 'lengths' are the Hermitian norms
+    sqrt(s^H s) of s = B - A (seed 004 Table 4's convention), which the table and the JSON say."""
+    args = ["igp", "examples/seed000_test1.toml", "--position", "1.1", "0.7", "-1.3", "--all"]
+    assert main(args) == 0
+    text = capsys.readouterr().out
+    assert "Hermitian norm" in text
+    assert main(args + ["--json"]) == 0
+    sols = json.loads(capsys.readouterr().out)["solutions"]
+    cx = [s for s in sols if not s["real"]]
+    assert len(sols) == 24 and len(cx) == 20
+    assert {s["lengths_norm"] for s in sols if s["real"]} == {"euclidean"}
+    from cdpr_algebra.model.robot import load_robot
+    robot = load_robot("examples/seed000_test1.toml")
+    for s in cx:
+        assert s["lengths_norm"].startswith("hermitian")
+        G = _complex_array(s["com_position"])
+        R = _complex_array(s["rotation"])
+        d = G + (robot.platform - robot.com) @ R.T - robot.base
+        assert np.allclose(s["lengths"], np.sqrt(np.sum(np.abs(d) ** 2, axis=1)), rtol=1e-9)
+
+
+def _complex_array(value) -> np.ndarray:
+    """The JSON's complex numbers ([re, im] pairs) as a complex array."""
+    a = np.asarray(value, dtype=float)
+    return a[..., 0] + 1j * a[..., 1]

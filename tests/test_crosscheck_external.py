@@ -87,6 +87,8 @@ def test_text_form(results, tmp_path, capsys):
     ("1 2 ; [0, 1] [0, 1] [0, 1]\n1 2 ; none\n", "r.txt line 2"),
     ("1 2 ; [2, 1] [0, 1] [0, 1]\n", "r.txt line 1"),  # lo > hi: said so, not 'not a number'
     ('[{"taut": [1, 2]}]', "--against"),  # JSON, not an object
+    ('{"subproblems": [{"taut": [1, 2], "cnt": 1}]}', "subproblems[0]"),  # a misspelt key is not ignored
+    ('{"solvr": "me", "subproblems": [{"taut": [1, 2]}]}', "--against"),
 ])
 def test_bad_files_name_the_field(tmp_path, content, field):
     f = tmp_path / ("r.json" if content.startswith(("{", "[{")) else "r.txt")
@@ -95,3 +97,18 @@ def test_bad_files_name_the_field(tmp_path, content, field):
         load_results(f, 3)
     assert err.value.field == field
     assert not content.startswith("1 2 ; [2, 1]") or "lo <= hi" in str(err.value)
+
+
+def test_their_lengths_must_be_ours(tmp_path):
+    """A file that says which lengths it solved for is checked against ours: other lengths are an error naming
+    the field, the same lengths (to rounding) are accepted."""
+    f = tmp_path / "r.json"
+    f.write_text(json.dumps({"lengths": [1.0, 2.0, 3.0], "subproblems": [{"taut": [1, 2], "count": 0}]}))
+    with pytest.raises(CdprInputError) as err:
+        load_results(f, 3, [1.0, 2.0, 3.5])
+    assert err.value.field == "lengths" and "3.5" in str(err.value)
+    with pytest.raises(CdprInputError) as err:
+        load_results(f, 3, [1.0, 2.0, 3.0, 4.0])
+    assert err.value.field == "lengths"
+    _, subs = load_results(f, 3, [1.0, 2.0, 3.0 * (1 + 1e-12)])
+    assert [s.taut for s in subs] == [(1, 2)]

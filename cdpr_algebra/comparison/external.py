@@ -5,7 +5,10 @@ Their file, JSON::
     {"solver": "IbexSolve 2.8", "subproblems": [{"taut": [1, 2, 3], "count": 6,
                                                   "boxes": [[[lo, hi], [lo, hi], [lo, hi]], ...]}, ...]}
 
-cables numbered from 1; ``count``: their number of admissible equilibria; ``boxes`` (optional): one per equilibrium,
+optional top-level ``"robot"`` (the robot's name) and ``"lengths"`` (the n cable lengths they solved for; checked
+against ours: a file for other lengths is an error, not a comparison); other keys are errors (a misspelt key would
+otherwise be a silently wrong comparison); cables numbered from 1; ``count``: their number of admissible
+equilibria; ``boxes`` (optional): one per equilibrium,
 intervals for the position of the platform frame's origin (x, y, z in the robot's base frame, as ``cdpr dgp``
 prints it); further intervals are ignored.  Or plain text, one box per line, the way interval solvers print them::
 
@@ -114,8 +117,36 @@ def _box(value, where: str) -> np.ndarray:
     return B
 
 
-def load_results(path, n: int) -> tuple[str, tuple]:
-    """(solver name, TheirSubproblems) from a JSON or text results file (module doc)."""
+TOP_KEYS = ("solver", "subproblems", "robot", "lengths")
+SUBPROBLEM_KEYS = ("taut", "count", "boxes")
+
+
+def _unknown_keys(data: dict, allowed, where: str) -> None:
+    extra = sorted(set(data) - set(allowed))
+    if extra:
+        raise CdprInputError(where, f"unknown key(s) {', '.join(map(repr, extra))}: expected only "
+                                    f"{', '.join(map(repr, allowed))}")
+
+
+def _check_lengths(data: dict, lengths) -> None:
+    """Their ``"lengths"`` (when given) must be ours to 1e-9 relative: else they solved another problem."""
+    if "lengths" not in data or lengths is None:
+        return
+    ours = np.asarray(lengths, dtype=float)
+    try:
+        theirs = np.asarray(data["lengths"], dtype=float)
+    except (TypeError, ValueError):
+        raise CdprInputError("lengths", f"expected {len(ours)} numbers, got {data['lengths']!r}") from None
+    if theirs.shape != ours.shape:
+        raise CdprInputError("lengths", f"expected {len(ours)} cable lengths, got {theirs.size}")
+    if not np.allclose(theirs, ours, rtol=1e-9, atol=0.0):
+        raise CdprInputError("lengths", f"their results are for lengths {theirs.tolist()}, ours are {ours.tolist()}: "
+                                        "give the same lengths (--lengths) or drop the key")
+
+
+def load_results(path, n: int, lengths=None) -> tuple[str, tuple]:
+    """(solver name, TheirSubproblems) from a JSON or text results file (module doc); ``lengths``: ours, checked
+    against the file's ``"lengths"`` when it has one."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
@@ -129,6 +160,8 @@ def load_results(path, n: int) -> tuple[str, tuple]:
         if not isinstance(data, dict):
             raise CdprInputError("--against", f'expected a JSON object {{"solver", "subproblems"}}, got a '
                                               f"{type(data).__name__}")
+        _unknown_keys(data, TOP_KEYS, "--against")
+        _check_lengths(data, lengths)
         subs = data.get("subproblems")
         if not isinstance(subs, list):
             raise CdprInputError("--against", 'expected a list "subproblems"')
@@ -139,6 +172,7 @@ def load_results(path, n: int) -> tuple[str, tuple]:
             where = f"subproblems[{k}]"
             if not isinstance(s, dict) or "taut" not in s:
                 raise CdprInputError(where, 'expected {"taut": [..], "count": N, "boxes": [..]}')
+            _unknown_keys(s, SUBPROBLEM_KEYS, where)
             taut = _taut(s["taut"], n, where)
             if taut in seen:
                 raise CdprInputError(where, f"taut set {list(taut)} listed twice")
@@ -230,8 +264,8 @@ def compare_subproblem(robot, rho, their: TheirSubproblem, seed: int = 0) -> Ext
 def crosscheck_against(robot, lengths, path, seed: int = 0, progress=None) -> ExternalResult:
     """Their results file (:func:`load_results`) against our DGP at ``lengths``."""
     t0 = time.perf_counter()
-    solver, subs = load_results(path, robot.n)
     rho = np.asarray(lengths, dtype=float)
+    solver, subs = load_results(path, robot.n, rho)
     out = []
     for k, s in enumerate(subs):
         c = compare_subproblem(robot, rho, s, seed)

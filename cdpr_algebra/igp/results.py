@@ -82,6 +82,7 @@ class IGPSolution:
             "angles": None if self.angles is None else _jsonable(self.angles),
             "euler_parameters": _jsonable(self.euler_parameters),
             "lengths": _jsonable(self.lengths),
+            "lengths_norm": "euclidean" if self.real else "hermitian: sqrt(s^H s), s = B - A (seed 004 Table 4)",
             "tensions": _jsonable(self.tensions),
             "admissible": self.admissible,
             "hessian": self.hessian_label,
