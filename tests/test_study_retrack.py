@@ -150,8 +150,13 @@ def test_ill_conditioned_study_limits_are_rescued_and_proven(monkeypatch):
     Z = world_coordinates(regular, 4, c, L, Rw, cb, robot.load)
     ((boxes, over),) = certify_endpoints(robot, rho, [(list(cables), Z)], [True])
     assert boxes.proven.all() and not over.any()
-    # without the singular limits of one sheet (the fifteenth session's rule) they stay failed
+    # without the singular limits of one sheet (the fifteenth session's rule) the fast finish's rule for
+    # ill-conditioned roots (ILL_CONDITIONED_LIMIT, thirty-first session) rescues them as well; without both they
+    # stay failed
     monkeypatch.setattr(SR, "_limit_of_one_sheet", lambda q, o: False)
+    _, alone = retrack_failed_in_study(S.fast_family(4), res, 4, p_gen, X_gen, target, 0, False, S.default_options())
+    assert alone >= 30
+    monkeypatch.setattr(SR, "ILL_CONDITIONED_LIMIT", 0.0)
     _, before = retrack_failed_in_study(S.fast_family(4), res, 4, p_gen, X_gen, target, 0, False, S.default_options())
     assert before <= rescued - 30
     # the default DGP tracks every path in Study parameters first: 216 regular points, none failed, the same ones
@@ -245,6 +250,60 @@ def test_limit_of_one_sheet_needs_one_sheet_a_solution_and_a_pose():
     assert not _limit_of_one_sheet(path(accuracy=np.nan), o)
     assert not _limit_of_one_sheet(path(accuracy=1e-3), o)
     assert not _limit_of_one_sheet(path(endpoint=np.concatenate([iso, np.ones(6)]), accuracy=1e-8), o)
+
+
+def test_ill_conditioned_roots_need_full_precision_a_bounded_condition_and_a_pose():
+    """``EndgameOptions.ill_conditioned_limit``: a fast-finish endpoint above ``singular_condition`` ends regular only
+    with a condition number within the limit, a last Newton update at ``refine_tol`` and, on a system that names
+    its coordinate at infinity (Study's N / |e|^2), that coordinate above 1e3 times the update."""
+    from types import SimpleNamespace
+
+    from cdpr_algebra.dgp.study_retrack import FastStudySystem
+    from cdpr_algebra.homotopy.endgame import EndgameOptions, _ill_conditioned_roots
+
+    o = replace(EndgameOptions(), ill_conditioned_limit=1e13)
+    pose = np.concatenate([[1.0, 0.5j, 0.3, 0.2], np.ones(6)])  # N / |e|^2 ~ 0.8
+    near_inf = np.concatenate([[1.0, 1j, 1e-6, 0.0], np.ones(6)])  # N / |e|^2 ~ 5e-13
+    X = np.array([pose, pose, pose, pose, near_inf, pose])
+    upd = np.array([1e-15, 1e-15, 1e-12, 1e-15, 1e-15, 1e-15])
+    cond = np.array([1e12, 1e14, 1e12, 1e9, 1e12, 1e12])
+    hom = SimpleNamespace(system=SimpleNamespace(infinity_coordinate=FastStudySystem.infinity_coordinate))
+    got = _ill_conditioned_roots(hom, X, upd, cond, o)
+    # regular; cond over the limit; update above refine_tol; cond below singular_condition (the usual test's);
+    # N vanishing to 1e3 x its update; and without a coordinate at infinity the same pose point passes
+    assert got.tolist() == [True, False, False, False, False, True]
+    assert _ill_conditioned_roots(SimpleNamespace(), X, upd, cond, o).tolist() == [True, False, False, False, True,
+                                                                                    True]
+
+
+@pytest.mark.xdist_group("seed000_test2")
+def test_ill_conditioned_study_endpoints_skip_the_cauchy_loops_and_end_where_they_did(monkeypatch):
+    """Seed 000 Test 2, taut set {1, 2, 5, 6} (coplanar platform): its Study run ends 23 paths at roots with
+    condition numbers 2e10 .. 2e12 (N / |e|^2 ~ 1e-6).  With ``ILL_CONDITIONED_LIMIT`` they end regular at the fast
+    finish, without Cauchy loops; the subproblem's account, its roots and its admissible equilibria are those of
+    the run that gave them the loops (limit off), in fewer tracking steps."""
+    import cdpr_algebra.dgp.study_retrack as SR
+    import cdpr_algebra.homotopy.endgame as E
+
+    robot = load_robot("examples/seed000_test2.toml")
+    loops = []
+    real_loops = E.cauchy_endgame
+    monkeypatch.setattr(E, "cauchy_endgame", lambda *a, **k: loops.append(len(a[1])) or real_loops(*a, **k))
+
+    def run():
+        loops.clear()
+        sub, _, Z = S._solve_taut_set(robot, robot.lengths, (0, 1, 4, 5), 0, None, exclude=False)
+        return sub, Z, sum(loops)
+
+    sub, Z, looped = run()
+    monkeypatch.setattr(SR, "ILL_CONDITIONED_LIMIT", 0.0)
+    sub0, Z0, looped0 = run()
+    assert looped == 0 and looped0 >= 20
+    assert sub.outcomes == sub0.outcomes == {"regular": 216, "singular": 0, "at_infinity": 0, "failed": 0}
+    assert (sub.finite, sub.real, sub.admissible) == (sub0.finite, sub0.real, sub0.admissible)
+    scale = 1 + np.abs(Z0).max(axis=1)
+    d = np.abs(Z[:, None, :] - Z0[None, :, :]).max(axis=2) / scale[None, :]
+    assert len(Z) == len(Z0) == 216 and np.all(d.min(axis=0) <= 1e-8) and np.all(d.min(axis=1) <= 1e-8)
 
 
 def test_study_limits_on_the_quadric_n_zero_are_at_infinity(monkeypatch):

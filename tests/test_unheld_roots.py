@@ -98,19 +98,24 @@ def test_the_partner_of_a_two_sheet_cycle_by_reflection(solved):
     assert left1 == 1
 
 
-def test_large_force_robot_returns_its_equilibrium():
+def test_large_force_robot_returns_its_equilibrium(monkeypatch):
     """A 6-cable robot built around an equilibrium with tensions 1e3 times the load (tests/large_forces.py): the two
     paths of a two-sheet cycle fail in the endgame; Newton from their estimate returns the constructed equilibrium
-    (before, it was not returned: the subproblem was only flagged incomplete)."""
+    (before, it was not returned: the subproblem was only flagged incomplete).  Since the thirty-first session the
+    Study run's fast finish ends such ill-conditioned roots regular before (``ILL_CONDITIONED_LIMIT``): with it the
+    equilibrium is returned too, and without it by the unheld-root step tested here."""
+    import cdpr_algebra.dgp.study_retrack as SR
     from cdpr_algebra.dgp.solve import solve_taut_set
     from large_forces import large_force_robot
 
     robot, p, R, tau = large_force_robot(6, 1e3, 300 + 60)
-    sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(6)))
-    assert sub.retried.get(UNHELD_ROOT, 0) >= 1
-    assert any(np.max(np.abs(s.position - p)) <= 1e-6 * robot.size and np.max(np.abs(s.rotation - R)) <= 1e-6
-               and np.allclose(s.tensions, tau, rtol=1e-4) for s in sols)
-    assert sum(sub.outcomes.values()) == sub.paths == 40
+    for limit in (SR.ILL_CONDITIONED_LIMIT, 0.0):
+        monkeypatch.setattr(SR, "ILL_CONDITIONED_LIMIT", limit)
+        sub, sols = solve_taut_set(robot, robot.lengths, tuple(range(6)))
+        assert limit or sub.retried.get(UNHELD_ROOT, 0) >= 1
+        assert any(np.max(np.abs(s.position - p)) <= 1e-6 * robot.size and np.max(np.abs(s.rotation - R)) <= 1e-6
+                   and np.allclose(s.tensions, tau, rtol=1e-4) for s in sols)
+        assert sum(sub.outcomes.values()) == sub.paths == 40 and sub.complete
 
 
 def test_roots_reached_in_study_parameters_settle_two_failed_paths(monkeypatch):
@@ -119,13 +124,15 @@ def test_roots_reached_in_study_parameters_settle_two_failed_paths(monkeypatch):
     no other path holds (:func:`cdpr_algebra.dgp.study_retrack.study_roots`), and the subproblem is complete.  The
     roots are checked by 50-digit Newton in the taut system (independent of the double-precision refinement), and
     without the Study step the two paths stay failed.  (The endgame in double-double settles these two paths first,
-    on the same roots: it is switched off here.)"""
+    on the same roots, and since the thirty-first session the Study run's fast finish before it, ending the roots
+    regular there (``ILL_CONDITIONED_LIMIT``): both are switched off here.)"""
     import mpmath
 
     import cdpr_algebra.dgp.solve as S
     import cdpr_algebra.dgp.study_retrack as SR
 
     monkeypatch.setattr(SR, "PRECISE_ENDGAME_PATHS", 0)
+    monkeypatch.setattr(SR, "ILL_CONDITIONED_LIMIT", 0.0)
     from cdpr_algebra.model.robot import load_robot
     from cdpr_algebra.model.taut_equations import taut_family
 
@@ -164,17 +171,21 @@ def test_without_the_study_roots_those_paths_stay_failed(monkeypatch):
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
     target = normalized_problem(robot, robot.lengths, (0, 2, 3, 4, 7))[0]
     monkeypatch.setattr(SR, "PRECISE_ENDGAME_PATHS", 0)
+    monkeypatch.setattr(SR, "ILL_CONDITIONED_LIMIT", 0.0)
     monkeypatch.setattr(S, "study_roots", lambda *a: np.zeros((0, 17), dtype=complex))
     res, failed = S._track(5, target, 0, gamma=False)
     assert failed == 2 and sum(p.retried == UNHELD_ROOT for p in res.track.paths) == 0
 
 
-def test_the_endgame_in_double_double_reaches_the_same_two_roots():
+def test_the_endgame_in_double_double_reaches_the_same_two_roots(monkeypatch):
     """The same two paths, with the endgame over double-double on (the default): it ends them on one sheet at the
-    roots that Newton's method in Study parameters reaches (same points to 1e-8 relative)."""
+    roots that Newton's method in Study parameters reaches (same points to 1e-8 relative).  (The fast finish's
+    rule for ill-conditioned roots, which ends them regular before, is switched off here.)"""
     import cdpr_algebra.dgp.solve as S
     import cdpr_algebra.dgp.study_retrack as SR
     from cdpr_algebra.model.robot import load_robot
+
+    monkeypatch.setattr(SR, "ILL_CONDITIONED_LIMIT", 0.0)
 
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
     target = normalized_problem(robot, robot.lengths, (0, 2, 3, 4, 7))[0]
@@ -187,6 +198,14 @@ def test_the_endgame_in_double_double_reaches_the_same_two_roots():
     assert len(roots) == 2
     for p in got:
         assert min(np.max(np.abs(r - p.endpoint)) for r in roots) <= 1e-8 * np.max(np.abs(p.endpoint))
+    # with the rule (the default): the same two paths end regular at the fast finish, on the same roots
+    monkeypatch.undo()
+    fast, failed = S._track(5, target, 0, gamma=False)
+    assert failed == 0
+    for p in got:
+        q = fast.track.paths[p.index]
+        assert q.status == "success" and q.retried == ""
+        assert np.max(np.abs(q.endpoint - p.endpoint)) <= 1e-8 * np.max(np.abs(p.endpoint))
 
 
 def test_failed_paths_settle_on_the_roots_of_the_other_route():
