@@ -278,7 +278,7 @@ def test_ill_conditioned_roots_need_full_precision_a_bounded_condition_and_a_pos
 
 @pytest.mark.xdist_group("seed000_test2")
 def test_ill_conditioned_study_endpoints_skip_the_cauchy_loops_and_end_where_they_did(monkeypatch):
-    """Seed 000 Test 2, taut set {1, 2, 5, 6} (coplanar platform): its Study run ends 23 paths at roots with
+    """Seed 000 Test 2, taut set {1, 2, 5, 6} (coplanar platform): each of its two Study runs ends 23 paths at roots with
     condition numbers 2e10 .. 2e12 (N / |e|^2 ~ 1e-6).  With ``ILL_CONDITIONED_LIMIT`` they end regular at the fast
     finish, without Cauchy loops; the subproblem's account, its roots and its admissible equilibria are those of
     the run that gave them the loops (limit off), in fewer tracking steps."""

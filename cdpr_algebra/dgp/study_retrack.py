@@ -83,7 +83,7 @@ __all__ = ["FastStudySystem", "fast_study_family", "retrack_failed_in_study", "t
 TAUT_FALLBACK = "taut"  # retried kind of a path that the Study run left undecided and the taut system settled
 RESIDUAL_TOL = 1e-8  # residual of the mapped-back endpoint in the taut system after Newton (refinement.refine's measure)
 EXTENDED = True  # Newton residuals in double-double where double precision stalls (TrackerOptions.extended_residual)
-ILL_CONDITIONED_LIMIT = 1e13  # Study endpoints up to this condition number, Newton at full precision, N nonzero: regular
+ILL_CONDITIONED_LIMIT = 1e13  # Study endpoints up to this condition, Newton at full precision, N nonzero: regular
 CHART_SEED = 104729  # the chart c of e: drawn from this seed (any generic complex vector serves)
 
 
@@ -187,9 +187,9 @@ def _study_options(options, detours: bool = False):
     no retries of any kind (a path failed here stays failed), and Newton residuals in double-double where double
     precision stalls (``EXTENDED``); fast-finish endpoints that are only ill-conditioned (condition number up to
     ``ILL_CONDITIONED_LIMIT``, Newton at full precision, N = e . e nonzero) end regular without Cauchy loops
-    (``EndgameOptions.ill_conditioned_limit``; every Study endpoint is tested again in the taut system); detours around phase-1 failures only with ``detours`` (a run of every path:
-    a detour is kept when it reaches a point at t = 0.1 that no other path of the run holds, which proves nothing
-    when the run holds only some of the paths)."""
+    (``EndgameOptions.ill_conditioned_limit``; every Study endpoint is tested again in the taut system); detours
+    around phase-1 failures only with ``detours`` (a run of every path: a detour is kept when it reaches a point at
+    t = 0.1 that no other path of the run holds, which proves nothing when the run holds only some of the paths)."""
     from cdpr_algebra.homotopy.endgame import SolveOptions
 
     base = options if options is not None else SolveOptions()

@@ -670,9 +670,9 @@ def _ill_conditioned_roots(homotopy, X, upd, cond, eo: EndgameOptions) -> np.nda
     ``eo.ill_conditioned_limit`` lets end regular: singular_condition < cond <= that limit, the last update at
     ``refine_tol`` (Newton converged to full precision, which it does not near a singular root) and, where the
     system names an ``infinity_coordinate``, that coordinate above 1e3 times the update (not a point at infinity).
-    Measured (thirty-first session) on seed 000 Test 2 (coplanar platform), Study run of taut set {1, 2, 5, 6}: 46
-    such endpoints (cond 2e10 .. 2e12, N / |e|^2 ~ 1e-6 .. 1e-5, updates <= 1e-13); their Cauchy loops (800 steps
-    a path) ended each at the same point (to 1e-11 .. 3e-7), singular with winding number 1."""
+    Measured (thirty-first session) on seed 000 Test 2 (coplanar platform), Study runs of taut set {1, 2, 5, 6} (its
+    two routes): 23 such endpoints each (cond 2e10 .. 2e12, N / |e|^2 ~ 1e-6 .. 1e-5, updates <= 1e-13); their
+    Cauchy loops (800 steps a path) ended each at the same point (to 1e-11 .. 3e-7), singular with winding number 1."""
     ok = (cond > eo.singular_condition) & (cond <= eo.ill_conditioned_limit) & (upd <= eo.refine_tol)
     vanish = getattr(getattr(homotopy, "system", None), "infinity_coordinate", None)
     if vanish is not None and ok.any():

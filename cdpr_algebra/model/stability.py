@@ -58,7 +58,7 @@ def null_space(JT) -> np.ndarray:
     _, s, vh = np.linalg.svd(JT, full_matrices=True)
     tol = np.max(s, axis=-1, keepdims=True) * max(JT.shape[-2:]) * np.finfo(float).eps
     rank = np.sum(s > tol, axis=-1)
-    if JT.ndim == 2:  # scipy.linalg.null_space's rule (numpy only: scipy.linalg costs 0.2 s of import)
+    if JT.ndim == 2:  # the rank rule of scipy.linalg.null_space, by numpy alone
         return vh[int(rank):, :].T.conj()
     if np.all(rank == JT.shape[-2]):
         return np.swapaxes(vh[..., JT.shape[-2]:, :], -1, -2).conj()

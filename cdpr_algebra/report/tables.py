@@ -63,8 +63,8 @@ def igp_table(result, include_complex: bool = False) -> str:
         lines += [f"#{i + 1} not certified: {s.certificate.reason}" for i, s in enumerate(sols)
                   if getattr(s, "certificate", None) is not None and not s.certificate.certified]
         if any(not s.real for s in sols):
-            lines.append("complex solutions: rho_i = sqrt(s_i^H s_i) with s_i = B_i - A_i (the Hermitian norm, seed 004 "
-                         "Table 4's convention) and tau_i = rho_i (tau_i / rho_i): no robot has these lengths")
+            lines.append("complex solutions: rho_i = sqrt(s_i^H s_i) with s_i = B_i - A_i (the Hermitian norm, seed "
+                         "004 Table 4's convention) and tau_i = rho_i (tau_i / rho_i): no robot has these lengths")
     if result.solution_set is not None:
         lines.append(f"solution set: {result.solution_set.kind}: {result.solution_set.description}")
         for k, v in result.solution_set.data.items():
