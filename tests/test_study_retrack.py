@@ -306,6 +306,24 @@ def test_ill_conditioned_study_endpoints_skip_the_cauchy_loops_and_end_where_the
     assert len(Z) == len(Z0) == 216 and np.all(d.min(axis=0) <= 1e-8) and np.all(d.min(axis=1) <= 1e-8)
 
 
+def _assert_last_samples_at_infinity(paths, m):
+    """Every path at infinity of a Study-first run carries its last two samples in taut coordinates (not its start
+    point): finite, at radii 0 < |t| < 0.1 with ``previous_t`` = |t| / sample_ratio, and the pose block growing
+    (valuation v with v c <= -POSE_DIVERGES: the rotation at infinity), so :func:`.tension_infinity_undecided`
+    keeps it at infinity; the start points are the stored generic solutions."""
+    from cdpr_algebra.dgp.tension_infinity import POSE_DIVERGES
+    from cdpr_algebra.homotopy.results import AT_INFINITY
+
+    X_gen = S._generic(m)[1]
+    inf = [p for p in paths if p.status == AT_INFINITY]
+    assert inf
+    for p in inf:
+        assert p.previous is not None and np.all(np.isfinite(p.endpoint)) and np.all(np.isfinite(p.previous))
+        assert 0 < abs(p.t) < 0.1 and abs(abs(p.previous_t) - 4 * abs(p.t)) <= 1e-9 * abs(p.t)
+        assert np.max(np.abs(p.endpoint - X_gen[p.index])) > 1.0
+        assert p.valuation(slice(0, 12)) * p.winding_number <= -POSE_DIVERGES
+
+
 def test_study_limits_on_the_quadric_n_zero_are_at_infinity(monkeypatch):
     """Seed 002's 8-cable robot, taut set {1, 2, 5}: 31 of its 156 paths fail in (p, u, v, w, lam) at t ~ 1e-4 with
     |x| ~ 1e5 (without the Study run's verdict they stayed failed, fifteenth session).  In Study parameters they
@@ -331,6 +349,8 @@ def test_study_limits_on_the_quadric_n_zero_are_at_infinity(monkeypatch):
     assert len(study) >= 25 and all(p.status == AT_INFINITY for p in study)
     assert all(p.winding_number >= 2 and 0 < p.order <= 1 for p in study)
     assert min(np.max(np.abs(p.endpoint)) for p in study) > 1e4  # their last points in (p, u, v, w, lam)
+    # the Study run's own paths at infinity: their last samples, not their start points (thirty-first session)
+    _assert_last_samples_at_infinity(first.track.paths, 3)
 
 
 def test_infinity_coordinate_of_study_points():
@@ -421,6 +441,7 @@ def test_precise_endgame_budget_decides_seed002_set_1256(monkeypatch):
     assert failed == 0 and counts["at_infinity"] == 8 and counts["regular"] == 208
     inf = [p for p in res.track.paths if p.status == "at_infinity"]
     assert all(p.winding_number == 2 and 0.75 <= p.order * p.winding_number <= 3.25 for p in inf)
+    _assert_last_samples_at_infinity(res.track.paths, 4)  # the precise endgame's verdicts keep them too
     monkeypatch.setattr(SR, "PRECISE_ENDGAME_STEPS", 1500)
     monkeypatch.setattr(SR, "PRECISE_ENDGAME_BUDGET", 10000)
     _, failed = S._track(4, target, 0, gamma=False)

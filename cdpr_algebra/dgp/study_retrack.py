@@ -322,11 +322,10 @@ def _precise_endgames(m: int, spaths, Y1, P1, P0, seed: int, gamma: bool, opts) 
             continue
         status, v = verdict(lim.loop, lim.loop_prev, lim.winding)
         common = dict(t=0j, accuracy=lim.accuracy, winding_number=lim.winding, retried=PRECISE_ENDGAME)
-        if status == BLOCK_AT_INFINITY:  # its last two samples kept (PathResult.valuation), the limit being no point
+        if status in (BLOCK_AT_INFINITY, AT_INFINITY):  # its last two samples kept (PathResult.valuation): the
+            # limit is no point (a Puiseux constant term, or a point of N = 0, where no pose is)
             spaths[j] = replace(spaths[j], **{**common, "t": complex(lim.t)}, status=AT_INFINITY, endpoint=lim.xlast,
                                 order=v, previous=lim.xprev, previous_t=complex(lim.t / eo.sample_ratio))
-        elif status == AT_INFINITY:
-            spaths[j] = replace(spaths[j], **common, status=AT_INFINITY, endpoint=lim.x, order=v)
         else:  # success on one sheet, singular on c >= 2 (the caller tests them)
             spaths[j] = replace(spaths[j], **common, status=status, endpoint=lim.x)
     return spaths
@@ -461,15 +460,15 @@ def retrack_failed_in_study(system, res, m: int, start_parameters, start_solutio
             rescued += 1
             done.add(j)
     for j, q in enumerate(spaths):  # limits on N = 0: the pose is at infinity (FastStudySystem.infinity_coordinate)
-        if q.status == AT_INFINITY:  # or (g, lam) unbounded (_precise_endgames): its last samples, mapped back
+        if q.status == AT_INFINITY:  # or (g, lam) unbounded: its last two samples, mapped back (where finite)
             i = failed[j]
             last = {}
-            if q.previous is not None and q.retried == PRECISE_ENDGAME:
+            if q.previous is not None:
                 with np.errstate(all="ignore"):
                     Z = from_study(np.array([q.endpoint, q.previous]), m)
                 if np.all(np.isfinite(Z)):
                     last = dict(endpoint=Z[0], t=q.t, previous=Z[1], previous_t=q.previous_t)
-            paths[i] = replace(paths[i], status=AT_INFINITY, steps=paths[i].steps + q.steps,  # its last point kept
+            paths[i] = replace(paths[i], status=AT_INFINITY, steps=paths[i].steps + q.steps,  # else: start point
                                winding_number=q.winding_number, order=q.order, retried=q.retried or "study", **last)
             rescued += 1
             done.add(j)

@@ -28,8 +28,11 @@ def tension_infinity_undecided(res, m, sampled_only: bool = False):
     -1.00, the translation isotropic: tests/test_dgp_symmetric.py; they were ``endgame_failed``).
 
     ``sampled_only``: only the paths whose last two samples are known (``PathResult.previous``), for the run in Study
-    parameters (:func:`.study_retrack.track_study_first`), whose other paths at infinity are limits on N = e . e = 0
-    (the rotation at infinity) and keep their start point as endpoint.  Its paths that the precise endgame put at
+    parameters (:func:`.study_retrack.track_study_first`), whose paths at infinity without them keep their start
+    point as endpoint: since the thirty-first session only those whose samples do not map back to finite taut
+    coordinates (before, every limit on N = e . e = 0, the rotation at infinity: the endgame kept its Cauchy estimate
+    on N = 0 and the precise endgame no sample; with their samples, seed 002's {1, 2, 5} and {1, 2, 5, 6} show the
+    pose diverging, v c = -0.85 .. -1.25, and they stay at infinity).  Its paths that the precise endgame put at
     infinity because (g, lam) grow (``block_at_infinity``) were not tested here until the thirtieth session: on
     robots built around an equilibrium with tensions 1e6 times the load (benchmarks/bench_large_forces.py --m 3
     --K 1e6, seeds 300-303, i.e. robot seeds 330-333) two such paths (winding number 2, pose steady, |lam| ~

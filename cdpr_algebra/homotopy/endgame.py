@@ -654,6 +654,8 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
                 Y = last[:, 1:] / last[:, :1]
                 before = before[:, 1:] / before[:, :1]
             st[_unsolved_in_affine(homotopy, Y, st, eo)] = ENDGAME_FAILED
+        if vanish is not None:  # a limit on the coordinate at infinity: the path keeps its last sample (not the
+            Y = np.where((st == AT_INFINITY)[:, None], eg.xlast, Y)  # estimate there), the pair of ``before``
         inf_ = st == AT_INFINITY
         prev[rest[inf_]] = before[inf_]
         prev_t[rest[inf_]] = eg.tprev[inf_]
