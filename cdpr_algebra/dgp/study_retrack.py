@@ -566,6 +566,7 @@ def study_roots(m: int, start_parameters, target, estimates):
     paths' Study estimates at t = 2.4e-5 lead to two distinct roots (scaled condition 9e10 in Study parameters,
     1e14 in the taut system, |x| = 2.4e6 there), confirmed by Newton's method at 60 digits.
     The caller keeps a root only as :func:`.unheld_roots.settle_on_unheld_roots` keeps any."""
+    from cdpr_algebra.homotopy.endgame import off_infinity
     from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
 
     from .unheld_roots import newton_roots
@@ -577,6 +578,6 @@ def study_roots(m: int, start_parameters, target, estimates):
     y, info, good = newton_roots(hom, Y, np.inf)
     with np.errstate(all="ignore"):
         upd = np.array([u for _, _, u in info])
-        good &= np.abs(FastStudySystem.infinity_coordinate(y)) > 1e3 * np.maximum(upd, 1e-16)  # a pose
+        good &= off_infinity(FastStudySystem.infinity_coordinate, y, upd)  # a pose
         X = from_study(y[good], m) if good.any() else np.zeros((0, 12 + m), dtype=complex)
     return X[np.all(np.isfinite(X), axis=1)]

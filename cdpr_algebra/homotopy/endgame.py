@@ -632,7 +632,7 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
         st, Y, a_ = eg.status.copy(), eg.x, eg.accuracy.copy()
         fin = np.flatnonzero(st == SINGULAR)
         # a system of other coordinates may say where its points are at infinity (Study's N = e . e = 0)
-        vanish = None if in_chart else getattr(getattr(homotopy, "system", None), "infinity_coordinate", None)
+        vanish = None if in_chart else _infinity_coordinate(homotopy)
         if (in_chart or vanish is not None) and fin.size:
             inf, undecided, ordv = decide_in_chart(Y[fin], a_[fin], eg.xlast[fin], eg.xprev[fin], eo, vanish,
                                                    eg.winding[fin])
@@ -676,11 +676,22 @@ def _ill_conditioned_roots(homotopy, X, upd, cond, eo: EndgameOptions) -> np.nda
     two routes): 23 such endpoints each (cond 2e10 .. 2e12, N / |e|^2 ~ 1e-6 .. 1e-5, updates <= 1e-13); their
     Cauchy loops (800 steps a path) ended each at the same point (to 1e-11 .. 3e-7), singular with winding number 1."""
     ok = (cond > eo.singular_condition) & (cond <= eo.ill_conditioned_limit) & (upd <= eo.refine_tol)
-    vanish = getattr(getattr(homotopy, "system", None), "infinity_coordinate", None)
+    vanish = _infinity_coordinate(homotopy)
     if vanish is not None and ok.any():
-        with np.errstate(all="ignore"):
-            ok[ok] = np.abs(vanish(X[ok])) > 1e3 * np.maximum(upd[ok], 1e-16)
+        ok[ok] = off_infinity(vanish, X[ok], upd[ok])
     return ok
+
+
+def _infinity_coordinate(homotopy):
+    """The system's ``infinity_coordinate`` (a function of the points whose vanishing means infinity), or None."""
+    return getattr(getattr(homotopy, "system", None), "infinity_coordinate", None)
+
+
+def off_infinity(coordinate, X, update) -> np.ndarray:
+    """(N,) bool: the points X (rows) whose coordinate at infinity ``coordinate(X)`` (e.g. Study's N / |e|^2) exceeds
+    1e3 times their last Newton update ``update``: a point, not one at infinity, to that accuracy."""
+    with np.errstate(all="ignore"):
+        return np.abs(coordinate(X)) > 1e3 * np.maximum(update, 1e-16)
 
 
 def _unsolved_in_affine(homotopy, X, status, eo: EndgameOptions) -> np.ndarray:
