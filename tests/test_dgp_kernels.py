@@ -52,6 +52,29 @@ def test_compiled_tracker_equals_numpy_tracker(m, gamma):
     assert np.abs(F).max() <= 1e-8
 
 
+@pytest.mark.parametrize("numpy_tracker", [False, True])
+def test_more_newton_updates_accept_more_steps_and_keep_the_endpoints(numpy_tracker):
+    """``max_updates``: a step whose Newton updates contract but reach corrector_tol only after the third is
+    accepted with 5 updates and rejected (taken again shorter) with 3; the paths end at the same points (measured,
+    compiled tracker, 156 paths: 4875 -> 4683 steps, 33 paths shorter, none longer)."""
+    p1, X = _generic(3)
+    rng = np.random.default_rng(13)
+    p0 = p1 + 0.3 * (rng.normal(size=p1.shape) + 1j * rng.normal(size=p1.shape))
+    hom = ParameterHomotopy(fast_family(3), p1, p0)
+    if numpy_tracker:
+        hom, X = _NumpyOnly(hom), X[:40]
+    runs = [track_segment(hom, X, 1.0, 0.0, TrackerOptions(predictor_tol=1e-3, max_updates=k)) for k in (3, 5, 2)]
+    three, five, two = runs
+    ok = (three.status == "success") & (five.status == "success")
+    assert ok.mean() > 0.95 and np.array_equal(three.status, five.status)
+    assert np.max(np.abs(three.x[ok] - five.x[ok])) <= 1e-7 * (1 + np.abs(three.x[ok]).max())
+    assert np.all(five.steps[ok] <= three.steps[ok] + 1)
+    if not numpy_tracker:  # chord updates contract linearly (the numpy tracker's full Newton ones seldom need a 4th)
+        assert five.steps.sum() < three.steps.sum()
+    # two updates: no step may take a third, so no fewer steps than with three
+    assert two.steps.sum() > three.steps.sum()
+
+
 @pytest.mark.parametrize("m", [2, 4, 6])
 def test_structured_solve_equals_dense(m):
     from cdpr_algebra.dgp.kernels import taut_apply, taut_factor

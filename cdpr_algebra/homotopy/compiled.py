@@ -478,6 +478,7 @@ def track_kernel(fj, fjt, factor, apply, fres, hom, X, P1, P0, G, TA, TB, H0, op
     max_step, min_step, max_steps = opts[1], opts[2], int(opts[3])
     ptol, ctol, mc, max_norm, noise_tol, safety = opts[4], opts[5], opts[6], opts[7], opts[8], opts[9]
     dd_allowed = opts[10] != 0.0
+    max_updates = int(opts[11])
     p = np.empty(mp, np.complex128)
     dp = np.empty(mp, np.complex128)
     F = np.empty(neq, np.complex128)
@@ -571,20 +572,34 @@ def track_kernel(fj, fjt, factor, apply, fres, hom, X, P1, P0, G, TA, TB, H0, op
             ok = finite and e1 <= ptol and contracting and e2 <= ctol
             floor_only = False
             if finite and not ok and e1 <= ptol and (contracting or e2 <= noise_tol):
-                # a third (chord) update: Newton still contracting towards corrector_tol, or the round-off
-                # floor (an update that does not move away either)
-                if use_dd:
-                    _dd_rhs(fres, hom, x2, p1, p0, g, tn, rhs, F, Xd, Pd, Fd, Sd)
-                else:
-                    _newton_rhs(fj, fjt, hom, x2, p, F, Js, rhs, ws)
-                _lin(okn, apply, Jn, An, pivn, rhs, d3)
-                e3 = _norm(d3) / scale
-                more = contracting and e3 <= ctol and e3 <= mc * e2
-                if np.isfinite(e3) and (more or (e2 <= noise_tol and e3 <= 2.0 * e2 and e3 <= noise_tol)):
-                    ok = True
-                    floor_only = not more
+                # more (chord) updates: Newton still contracting towards corrector_tol (each update within
+                # max_contraction of the one before), up to max_updates in all; or the round-off floor (an update
+                # that does not move away either)
+                eprev = e2
+                more = contracting
+                for _u in range(max_updates - 2):
+                    if use_dd:
+                        _dd_rhs(fres, hom, x2, p1, p0, g, tn, rhs, F, Xd, Pd, Fd, Sd)
+                    else:
+                        _newton_rhs(fj, fjt, hom, x2, p, F, Js, rhs, ws)
+                    _lin(okn, apply, Jn, An, pivn, rhs, d3)
+                    e3 = _norm(d3) / scale
+                    if not np.isfinite(e3):
+                        break
+                    more = more and e3 <= mc * eprev
+                    if more and e3 <= ctol:
+                        ok = True
+                    elif eprev <= noise_tol and e3 <= 2.0 * eprev and e3 <= noise_tol:
+                        ok = True
+                        floor_only = True
+                    if ok or not more:
+                        if ok:
+                            for c in range(n):
+                                x2[c] += d3[c]
+                        break
                     for c in range(n):
                         x2[c] += d3[c]
+                    eprev = e3
             if dd_allowed and not use_dd and finite and e1 <= ptol and (floor_only or (not ok and e2 <= noise_tol)):
                 # the predictor was good but Newton stalled (or stopped at the round-off floor): residuals in
                 # double-double from here on, and the same step again
@@ -652,7 +667,7 @@ def track_segment_compiled(homotopy, x0, t_a, t_b, options, h0=None):
     P1, P0, G = homotopy.path_parameters()
     opts = np.array([o.initial_step, o.max_step, o.min_step, o.max_steps, o.predictor_tol, o.corrector_tol,
                      o.max_contraction, o.max_norm, o.noise_tol, o.step_safety,
-                     float(fres is not None and o.extended_residual)], dtype=float)
+                     float(fres is not None and o.extended_residual), o.max_updates], dtype=float)
     Xout = np.empty_like(X)
     S = np.empty(N)
     st = np.empty(N, dtype=np.int64)
