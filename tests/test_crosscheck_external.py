@@ -87,8 +87,8 @@ def test_text_form(results, tmp_path, capsys):
     ("1 2 ; [0, 1] [0, 1] [0, 1]\n1 2 ; none\n", "r.txt line 2"),
     ("1 2 ; [2, 1] [0, 1] [0, 1]\n", "r.txt line 1"),  # lo > hi: said so, not 'not a number'
     ('[{"taut": [1, 2]}]', "--against"),  # JSON, not an object
-    ('{"subproblems": [{"taut": [1, 2], "cnt": 1}]}', "subproblems[0]"),  # a misspelt key is not ignored
-    ('{"solvr": "me", "subproblems": [{"taut": [1, 2]}]}', "--against"),
+    ('{"subproblems": [{"taut": [1, 2], "cnt": 1}]}', "subproblems[0].cnt"),  # a misspelt key is not ignored
+    ('{"solvr": "me", "subproblems": [{"taut": [1, 2]}]}', "solvr"),
 ])
 def test_bad_files_name_the_field(tmp_path, content, field):
     f = tmp_path / ("r.json" if content.startswith(("{", "[{")) else "r.txt")

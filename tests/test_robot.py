@@ -128,3 +128,26 @@ def test_arbitrary_input_never_crashes_deep(data):
         Robot.from_dict(data)
     except CdprInputError as err:
         assert err.field
+
+
+def test_unknown_keys_are_named_alike_everywhere(tmp_path):
+    """A robot file, the exact IGP's data dict and a ``crosscheck --against`` file reject misspelt keys the same
+    way (model.errors.reject_unknown_keys): the field is the path of the first unknown key, the message lists every
+    unknown key and the allowed ones."""
+    from cdpr_algebra.comparison.external import load_results
+    from cdpr_algebra.igp.position import dialytic_determinant
+
+    data = dict(GOOD) | {"bases": [[0, 0, 0]], "lenghts": [1, 2, 3]}
+    with pytest.raises(CdprInputError) as err:
+        load_robot(_write(tmp_path, data))
+    assert err.value.field == "bases"
+    assert "'bases', 'lenghts'" in err.value.problem and "allowed keys: name, base" in err.value.problem
+    with pytest.raises(CdprInputError) as err:
+        dialytic_determinant({"base": GOOD["base"], "platform": GOOD["platform"], "plataform": 1}, [0, 0, 1])
+    assert err.value.field == "plataform" and "allowed keys: base, platform, com, load_direction" in str(err.value)
+    f = tmp_path / "theirs.json"
+    f.write_text('{"solver": "x", "subproblems": [{"taut": [1, 2], "count": 0}, {"taut": [1], "cnt": 2}]}')
+    with pytest.raises(CdprInputError) as err:
+        load_results(f, 3)
+    assert err.value.field == "subproblems[1].cnt" and "unknown key 'cnt' (allowed keys: taut, count, boxes)" in str(
+        err.value)

@@ -31,7 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
-from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.model.errors import CdprInputError, reject_unknown_keys
 from cdpr_algebra.report.jsonable import jsonable
 
 from .compare import overall_status
@@ -121,13 +121,6 @@ TOP_KEYS = ("solver", "subproblems", "robot", "lengths")
 SUBPROBLEM_KEYS = ("taut", "count", "boxes")
 
 
-def _unknown_keys(data: dict, allowed, where: str) -> None:
-    extra = sorted(set(data) - set(allowed))
-    if extra:
-        raise CdprInputError(where, f"unknown key(s) {', '.join(map(repr, extra))}: expected only "
-                                    f"{', '.join(map(repr, allowed))}")
-
-
 def _check_lengths(data: dict, lengths) -> None:
     """Their ``"lengths"`` (when given) must be ours to 1e-9 relative: else they solved another problem."""
     if "lengths" not in data or lengths is None:
@@ -160,7 +153,7 @@ def load_results(path, n: int, lengths=None) -> tuple[str, tuple]:
         if not isinstance(data, dict):
             raise CdprInputError("--against", f'expected a JSON object {{"solver", "subproblems"}}, got a '
                                               f"{type(data).__name__}")
-        _unknown_keys(data, TOP_KEYS, "--against")
+        reject_unknown_keys(data, TOP_KEYS)
         _check_lengths(data, lengths)
         subs = data.get("subproblems")
         if not isinstance(subs, list):
@@ -172,7 +165,7 @@ def load_results(path, n: int, lengths=None) -> tuple[str, tuple]:
             where = f"subproblems[{k}]"
             if not isinstance(s, dict) or "taut" not in s:
                 raise CdprInputError(where, 'expected {"taut": [..], "count": N, "boxes": [..]}')
-            _unknown_keys(s, SUBPROBLEM_KEYS, where)
+            reject_unknown_keys(s, SUBPROBLEM_KEYS, where)
             taut = _taut(s["taut"], n, where)
             if taut in seen:
                 raise CdprInputError(where, f"taut set {list(taut)} listed twice")

@@ -60,7 +60,7 @@ from math import lcm
 import numpy as np
 import scipy.linalg
 
-from cdpr_algebra.model.errors import CdprInputError
+from cdpr_algebra.model.errors import CdprInputError, reject_unknown_keys
 from cdpr_algebra.generated import dialytic as _gd
 from cdpr_algebra.generated import quartics as _gq
 from cdpr_algebra.model.pose import euler_parameters_from_matrix, matrix_from_euler_parameters
@@ -742,9 +742,7 @@ def _exact_data(robot_or_data, com_position):
         com = robot_or_data.com.tolist()
         d = robot_or_data.load_direction.tolist()
     elif isinstance(robot_or_data, dict):
-        unknown = [k for k in robot_or_data if k not in ("base", "platform", "com", "load_direction")]
-        if unknown:
-            raise CdprInputError(unknown[0], "unknown key (allowed: base, platform, com, load_direction)")
+        reject_unknown_keys(robot_or_data, ("base", "platform", "com", "load_direction"))
         for key in ("base", "platform"):
             if key not in robot_or_data:
                 raise CdprInputError(key, "required key is missing")

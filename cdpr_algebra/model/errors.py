@@ -27,3 +27,14 @@ class CdprInputError(ValueError):
 
     def with_source(self, source: str) -> "CdprInputError":
         return CdprInputError(self.field, self.problem, source)
+
+
+def reject_unknown_keys(data, allowed, where: str = "") -> None:
+    """A :class:`CdprInputError` when the mapping ``data`` has keys outside ``allowed`` (a misspelt key must not be
+    ignored: that would change the meaning of the input).  The field is the path of the first unknown key (``where``
+    + ``.`` + key, or the key at the top level); the problem lists every unknown key and the allowed ones."""
+    extra = [k for k in data if k not in allowed]
+    if extra:
+        field = f"{where}.{extra[0]}" if where else str(extra[0])
+        raise CdprInputError(field, f"unknown key{'s' if len(extra) > 1 else ''} {', '.join(map(repr, extra))} "
+                                    f"(allowed keys: {', '.join(allowed)})")

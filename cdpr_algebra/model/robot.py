@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import MAX_MAGNITUDE, CdprInputError, check_magnitude
+from .errors import MAX_MAGNITUDE, CdprInputError, check_magnitude, reject_unknown_keys
 
 ROBOT_KEYS = ("name", "base", "platform", "com", "load", "load_direction", "lengths")
 REQUIRED_KEYS = ("base", "platform", "com", "load")
@@ -164,9 +164,7 @@ class Robot:
         try:
             if not isinstance(data, dict):
                 raise CdprInputError("<top level>", f"expected a table/object of robot fields, got {type(data).__name__}")
-            unknown = [k for k in data if k not in ROBOT_KEYS]
-            if unknown:
-                raise CdprInputError(unknown[0], f"unknown key (allowed keys: {', '.join(ROBOT_KEYS)})")
+            reject_unknown_keys(data, ROBOT_KEYS)
             missing = [k for k in REQUIRED_KEYS if k not in data]
             if missing:
                 raise CdprInputError(missing[0], "required key is missing")
