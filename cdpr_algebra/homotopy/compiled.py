@@ -5,14 +5,15 @@ whatever the number of paths; a DGP subproblem needs a few hundred sequential st
 overhead (not arithmetic) dominated its time.  Here every path runs its own loop of compiled scalar code.
 
 :func:`track_kernel`: per path, along t(s) = t_a + s (t_b - t_a), the step of :func:`.tracker.track_segment`
-(classical RK4 predictor on dx/ds = -H_x^{-1} H_t dt, two Newton corrections, the same acceptance tests,
+(classical RK4 predictor on dx/ds = -H_x^{-1} H_t dt, Newton corrections, the same acceptance tests,
 step-size rule and failure codes) for the parameter homotopy p(t) = (gamma t p1 + (1 - t) p0) / (gamma t + 1 - t)
 (gamma = 1: the straight segment), with per-path (p1, p0, gamma) allowed so that paths of several homotopies
 of one family can run in one call.  Linear algebra: LU factors with partial pivoting, and two reuses of them
-(4 factorizations per step instead of 6): the second Newton correction is a chord step with the factors of
-the first (its update is the same to first order, so the contraction test keeps its meaning), and after an
-accepted step those factors (H_x at the predicted point, within the predictor error of the new point) give the
-next step's RK4 stage k1; after a rejected step k1 is kept (it does not depend on the step size).
+(4 factorizations per step instead of 6): the second and later Newton corrections are chord steps with the
+factors of the first (the second update is the same to first order, so the contraction test keeps its meaning;
+chord steps contract linearly, hence up to ``TrackerOptions.max_updates`` of them on ill-conditioned stretches),
+and after an accepted step those factors (H_x at the predicted point, within the predictor error of the new
+point) give the next step's RK4 stage k1; after a rejected step k1 is kept (it does not depend on the step size).
 The system enters as four compiled functions with fixed signatures, passed as first-class functions (so the
 tracker is compiled and cached once for every system): ``fj(x, p, F, J)`` (F and dF/dx),
 ``fjt(x, p, dp, F, J, Ht)`` (also Ht = dF/dp . dp), ``factor(J, A, piv) -> bool`` (LU factors of J in the
@@ -549,7 +550,7 @@ def track_kernel(fj, fjt, factor, apply, fres, hom, X, P1, P0, G, TA, TB, H0, op
             sn = s + ha
             tn = ta + sn * dt
             _params(p1, p0, g, tn, p, dp)
-            # two Newton corrections at t(s + h): a Newton step, then a chord step with the same factors
+            # Newton corrections at t(s + h): a Newton step, then chord steps with the same factors
             _newton_rhs(fj, fjt, hom, xt, p, F, Jn, rhs, ws)
             if use_dd:
                 _dd_rhs(fres, hom, xt, p1, p0, g, tn, rhs, F, Xd, Pd, Fd, Sd)

@@ -4,7 +4,7 @@ Method. Along a straight segment t(s) = t_a + s (t_b - t_a), s in [0, 1] (t comp
 a path solves H(x(s), t(s)) = 0, hence dx/ds = -H_x^{-1} H_t (t_b - t_a). One step of size h:
 
 1. predictor: classical Runge-Kutta (RK4) on that ODE (4 batched linear solves);
-2. corrector: two Newton iterations at t(s + h), updates d1 and d2;
+2. corrector: Newton iterations at t(s + h), updates d1, d2 (and more, step 3);
 3. accept when the predictor error |d1| <= ``predictor_tol`` (1 + |x|) and Newton contracts
    (|d2| <= ``max_contraction`` |d1|, or both are below 1e-9 / 1e-10: round-off level) and |d2| <= ``corrector_tol`` (1 + |x|);
    or after more Newton updates (at most ``max_updates`` in all), when Newton contracted but |d2| was above
@@ -55,17 +55,17 @@ class TrackerOptions:
     * ``corrector_tol`` [1e-8]: accepted size of the last Newton update, relative to 1 + |x|;
     * ``max_contraction`` [0.2]: |d2| / |d1| must not exceed this (Newton is converging);
     * ``max_norm`` [1e10]: |x| beyond this is ``diverged``;
-    * ``noise_tol`` [1e-6]: a step whose Newton updates stagnate (third update <= 2 x second) below this
+    * ``noise_tol`` [1e-6]: a step whose Newton updates stagnate (an update <= 2 x the one before) below this
       is accepted as limited by round-off (ill-conditioned stretch of a path);
     * ``step_safety`` [0.8]: safety factor of the step-size rule (step 4 of the module doc);
     * ``extended_residual`` [False]: with the compiled tracker and a system that offers a double-double residual
       (``compiled_residual_dd``), a path whose Newton corrections stall although its predictor was good takes
       its residuals in double-double from then on (:func:`.compiled.track_kernel`); the numpy tracker has none;
-    * ``max_updates`` [5]: most Newton updates of one step (step 3 of the module doc).  Measured, seed 000 Test 2
-      (coplanar platform, paths that pass near Study's exceptional set): 3 updates rejected a quarter of the steps
-      of its slowest paths, whose Newton updates contract by 0.03 .. 0.2 (chord updates, :mod:`.compiled`), and
-      the finish t = 0.1 -> 0 took 249,923 steps; 5 updates: 221,993, every account and admissible pose the same;
-      8: no fewer than 5.
+    * ``max_updates`` [5]: most Newton updates of one step (step 3 of the module doc; 2 at least).  Measured,
+      seed 000 Test 2 (coplanar platform, paths that pass near Study's exceptional set): 3 updates rejected a
+      quarter of the steps of its slowest paths, whose Newton updates contract by 0.03 .. 0.2 (chord updates,
+      :mod:`.compiled`), and the finish t = 0.1 -> 0 took 249,923 steps; 5 updates: 221,993, every account and
+      admissible pose the same; 8: no fewer than 5.
     """
 
     initial_step: float = 0.05
@@ -161,11 +161,11 @@ def track_segment(homotopy, x0, t_a, t_b, options: TrackerOptions | None = None,
         # contraction is only measurable above round-off: a predictor within 1e-9 needs no such test
         contracting = (e2 <= o.max_contraction * e1) | ((e1 <= 1e-9) & (e2 <= 1e-10))
         ok = finite & (e1 <= o.predictor_tol) & contracting & (e2 <= o.corrector_tol)
-        # a third Newton iteration: (a) Newton contracts but |d2| is above corrector_tol (a large predictor error
-        # still inside the quadratic region): accept when |d3| <= corrector_tol and it contracts again; (b) the
-        # round-off floor: on an ill-conditioned stretch Newton stagnates at cond * eps instead of contracting; a
-        # third update that does not move away either (e3 <= 2 e2 <= 2 noise_tol) shows that the point is as
-        # accurate as double precision allows: accept it
+        # more Newton iterations (up to max_updates in all): (a) Newton contracts but |d2| is above corrector_tol (a
+        # large predictor error still inside the convergence region): accept at the first update <= corrector_tol,
+        # each having contracted again; (b) the round-off floor: on an ill-conditioned stretch Newton stagnates at
+        # cond * eps instead of contracting; an update that does not move away either (<= 2 x the one before, both
+        # <= noise_tol) shows that the point is as accurate as double precision allows: accept it
         cand = np.flatnonzero(finite & ~ok & (e1 <= o.predictor_tol) & (contracting | (e2 <= o.noise_tol)))
         eprev, more = e2[cand], contracting[cand]
         for _ in range(o.max_updates - 2):
