@@ -54,6 +54,30 @@ def test_python_dash_m():
     assert bad.returncode == 2 and "no such file" in bad.stderr and "Traceback" not in bad.stderr
 
 
+def test_console_exit_skips_only_the_teardown():
+    """cli.main.exit_now (how ``cdpr`` and ``python -m cdpr_algebra`` end): the status is kept, atexit callbacks run,
+    buffered output is flushed (a whole DGP's JSON through a pipe), the teardown (objects' finalizers) is skipped, and
+    a process with another thread still running exits normally, joining it."""
+    run = [sys.executable, "-c", "import atexit, sys; atexit.register(lambda: print('atexit ran')); "
+           "sys.stdout.write('x' * 100000); from cdpr_algebra.cli.main import exit_now; exit_now(3)"]
+    proc = subprocess.run(run, capture_output=True, text=True)
+    assert proc.returncode == 3 and proc.stdout == "x" * 100000 + "atexit ran\n"
+    teardown = ("class D:\n    def __del__(self):\n        print('teardown')\nd = D()\n"
+                "from cdpr_algebra.cli.main import exit_now\nexit_now({})".format)
+    assert subprocess.run([sys.executable, "-c", teardown(0)], capture_output=True, text=True).stdout == ""
+    plain = subprocess.run([sys.executable, "-c", teardown(0).replace("exit_now(0)", "exit_now")], capture_output=True,
+                           text=True)
+    assert plain.stdout == "teardown\n"  # the objects' finalizers run in the teardown that exit_now skips
+    run = [sys.executable, "-c", "import threading, time; threading.Thread(target=lambda: (time.sleep(0.3), "
+           "print('thread done'))).start(); from cdpr_algebra.cli.main import exit_now; exit_now(0)"]
+    proc = subprocess.run(run, capture_output=True, text=True)
+    assert proc.returncode == 0 and proc.stdout == "thread done\n"
+    proc = subprocess.run([sys.executable, "-m", "cdpr_algebra", "dgp", "examples/seed000_test1.toml", "--json"],
+                          capture_output=True, text=True)
+    out = json.loads(proc.stdout)
+    assert proc.returncode == 0 and out["complete"] is True and len(out["subproblems"]) == 7
+
+
 def test_warm_solves_and_reports(tmp_path, capsys):
     """``cdpr warm`` (run by setup.py at build time) solves the robot by every compiled path and says so; a robot
     without cable lengths is an input error naming the field."""

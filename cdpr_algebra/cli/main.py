@@ -22,8 +22,11 @@ certificate, so equilibria may be missing there; the subproblems and why are nam
 from __future__ import annotations
 
 import argparse
+import atexit
 import importlib
+import os
 import sys
+import threading
 
 from cdpr_algebra.model.errors import CdprInputError
 
@@ -42,6 +45,28 @@ def build_parser() -> argparse.ArgumentParser:
     for name in COMMANDS:
         _command(name).add_parser(sub)
     return p
+
+
+def console() -> None:
+    """The ``cdpr`` console script and ``python -m cdpr_algebra``: :func:`main`, then :func:`exit_now`."""
+    exit_now(main())
+
+
+def exit_now(code) -> None:
+    """Exit with ``code`` without the interpreter's teardown: the atexit callbacks run and stdout / stderr are
+    flushed, then ``os._exit``.  The teardown only frees memory; after numba has compiled or loaded a kernel it takes
+    0.2-0.3 s (numba's LLVM objects), a fifth of a small DGP's whole process (``benchmarks/bench_startup.py``).
+    With other threads still running (they would be joined) or without the atexit hook, a plain ``sys.exit``."""
+    run_exitfuncs = getattr(atexit, "_run_exitfuncs", None)
+    if run_exitfuncs is None or threading.active_count() > 1:
+        sys.exit(code)
+    run_exitfuncs()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):  # a closed pipe or stream: nothing more can be written to it
+            pass
+    os._exit(code if isinstance(code, int) else (0 if code is None else 1))
 
 
 def main(argv=None) -> int:
