@@ -286,20 +286,26 @@ def test_slack_cable_at_its_length_is_not_proven_slack():
 
 def test_one_taut_cable():
     """m = 1: the gauge-fixed square system certifies each equilibrium of dgp_one_cable; the rotation about the
-    cable is neutral, so H_r is singular and its class undecided."""
+    cable is neutral (an exact zero of H_r), and the class with that zero is proven by bordering it out
+    (equilibria._with_neutral_spin): '>=', '<=' or '<>', equal to the floating-point class of model.stability."""
     robot = _boundary_robot().with_lengths([6.5, 30.0, 30.0])
     eqs = one_cable_equilibria(robot, 0)
     assert len(eqs) == 4
+    classes = []
     for e in eqs:
         c = certify_taut_root(robot, None, [0], e.position, e.rotation, [e.tension])
         assert c.certified and c.slack_proven, c.reason
         assert c.tension_signs[0] == ("positive" if e.tension > 0 else "negative")
         assert _contains(c.tension_lower[:1], c.tension_upper[:1], e.tension)  # |tau| = Q exactly
-        assert c.hessian == "undecided"
         G = e.position + e.rotation @ robot.com
         B = e.position + e.rotation @ robot.platform[0]
         cls = stability_classes(robot.base[:1], B[None], G, [e.tension], [6.5], robot.load, robot.size)
         assert cls in (">=", "<=", "<>")
+        assert c.hessian == "proven" and c.hessian_class == cls
+        classes.append(cls)
+    # hanging (tension > 0, G below B): only the spin is neutral; G above B on a taut cable, or G below B on a
+    # strut (tension < 0): one unstable pair; G above B on a strut: all unstable
+    assert sorted(classes) == ["<=", "<>", "<>", ">="]
     # G at the anchor: a 3-dof family, said so
     r = Robot(robot.base, robot.platform, robot.platform[0], robot.load, robot.load_direction, robot.lengths)
     c = certify_taut_root(r, None, [0], eqs[0].position, eqs[0].rotation, [r.load])

@@ -14,7 +14,7 @@ from cdpr_algebra import load_robot
 from cdpr_algebra.cli.main import main
 from cdpr_algebra.igp.orientation import igp_orientation
 from cdpr_algebra.model.pose import matrix_from_angles
-from cdpr_algebra.model.stability import reduced_hessian
+from cdpr_algebra.model.stability import reduced_hessian, stability_classes
 from cdpr_algebra.report.tables import igp_table
 
 ROBOT = "examples/seed004_table1.toml"
@@ -110,8 +110,9 @@ def test_cli_table_and_json_at_the_crossing(robot, crossing, capsys):
 
 
 def test_dgp_table_never_shows_an_unproven_class_beside_a_plain_yes():
-    """Test 1's robot at lengths 1, 10, 25: two 1-cable equilibria (neutral about the cable: H_r singular, never
-    proven) and two 2-cable ones.  A row whose certificate leaves H_r undecided says so in the certified column."""
+    """Test 1's robot at lengths 1, 10, 25: two 1-cable equilibria (neutral about the cable: H_r singular, its class
+    with that zero proven since the thirty-second session) and two 2-cable ones.  A row whose certificate leaves H_r
+    undecided says so in the certified column; here every class is proven and equals the floating-point class."""
     from cdpr_algebra.dgp.solve import dgp, dgp_table
 
     robot = load_robot("examples/seed000_test1.toml")
@@ -126,4 +127,12 @@ def test_dgp_table_never_shows_an_unproven_class_beside_a_plain_yes():
             assert label == "yes (H_r undecided)", row
         elif s.certified:
             assert s.hessian == s.certificate.hessian_class and label == "yes", row
-    assert undecided == sum(1 for s in res.solutions if len(s.taut) == 1) == 2
+    assert undecided == 0 and sum(1 for s in res.solutions if len(s.taut) == 1) == 2
+    for s in res.solutions:  # the proven class is the one the floating-point eigenvalues give
+        taut = list(s.taut)
+        A, b = robot.base[[c - 1 for c in taut]], robot.platform[[c - 1 for c in taut]]
+        B, G = s.position + b @ s.rotation.T, s.position + s.rotation @ robot.com
+        lengths = np.linalg.norm(B - A, axis=1)
+        cls = stability_classes(A, B, G, s.tensions[[c - 1 for c in taut]], lengths, robot.load, robot.size)
+        assert s.certificate.hessian_class == cls
+        assert len(taut) > 1 or cls in (">=", "<=", "<>")

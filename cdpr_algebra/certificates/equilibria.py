@@ -128,7 +128,9 @@ class Certificate:
     'unknown' (existence not proven);
     ``slack_margin_lower/upper``: enclosure of |B_j - A_j| - rho_j (NaN for taut cables); ``slack_proven``: every
     slack cable proven slack (vacuously True without slack cables); ``hessian``: 'proven' (``hessian_class`` is
-    then the proven class '>', '<' or '<>') or 'undecided'.  Enclosures are NaN when existence was not proven.
+    then the proven class '>', '<' or '<>'; for one taut cable '>=', '<=' or '<>': the spin about the cable line is
+    an exact zero of H_r, :func:`_with_neutral_spin`) or 'undecided'.  Enclosures are NaN when existence was not
+    proven.
     """
 
     certified: bool
@@ -237,19 +239,34 @@ def _bordered_matrix(A, B, G, lam, L, Q):
     return K
 
 
-def _hessian_class(inertia, m) -> tuple[str, str | None]:
+def _hessian_class(inertia, borders) -> tuple[str, str | None]:
     """('proven', class) with class '>', '<' or '<>' of the reduced Hessian, or ('undecided', None), from the
-    inertia of the bordered matrix K of the m taut cables (None: not proven, or no taut cable)."""
+    inertia of the bordered matrix K of the m taut cables (None: not proven, or no taut cable); ``borders`` = (m,
+    neutral): with ``neutral`` K is bordered once more by the exact zero direction of H_r
+    (:func:`_with_neutral_spin`), and the classes are '>=', '<=' or '<>' (that zero eigenvalue included)."""
+    m, neutral = borders
     if inertia is None:
         return "undecided", None
-    pos, neg = inertia[0] - m, inertia[1] - m
+    pos, neg = inertia[0] - m - neutral, inertia[1] - m - neutral
     if pos < 0 or neg < 0:  # impossible with full row rank; be safe
         return "undecided", None
     if neg == 0:
-        return "proven", ">"
+        return "proven", ">=" if neutral else ">"
     if pos == 0:
-        return "proven", "<"
+        return "proven", "<=" if neutral else "<"
     return "proven", "<>"
+
+
+def _with_neutral_spin(K, A, B, L):
+    """K of one taut cable (7 x 7, coordinates (dG, L dtheta, multiplier)) bordered by the spin about the cable line,
+    w = (0, L (A - B), 0).  Why it is an exact zero of H_r: with one cable of nonzero tension, moment balance puts G
+    on the cable line, so turning the platform about that line moves neither B (|B - A| is kept) nor G (the
+    potential is kept): every such pose is an equilibrium.  With H_r = H' (+) 0 on span(w) (+) its complement,
+    inertia(bordered K) = inertia(H') + (m + 1, m + 1, 0): proving it proves H_r's class with that one zero.  The
+    enclosure of A - B contains the true direction, so the proof covers the true matrix."""
+    zero = arb(0)
+    w = [zero] * 3 + [(A[k] - B[k]) * L for k in range(3)] + [zero]
+    return [row + [w[i]] for i, row in enumerate(K)] + [w + [zero]]
 
 
 def _robot_balls(robot, frame=None, reading: str = BINARY):
@@ -279,13 +296,14 @@ def _finish(parts) -> list:
     """Certificates from :func:`_enclosures` results, the inertias of their bordered matrices proven at once."""
     todo = [k for k, (_, K, _) in enumerate(parts) if K is not None]
     inertias = dict(zip(todo, symmetric_inertias([parts[k][1] for k in todo])))
-    return [Certificate(**fields, **dict(zip(("hessian", "hessian_class"), _hessian_class(inertias.get(k), m))))
-            for k, (fields, _, m) in enumerate(parts)]
+    return [Certificate(**fields, **dict(zip(("hessian", "hessian_class"), _hessian_class(inertias.get(k), borders))))
+            for k, (fields, _, borders) in enumerate(parts)]
 
 
 def _enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None, balls=None, position=None):
     """The fields of the certificate of :func:`_consequences` but the Hessian's, the bordered matrix K (None
-    without taut cables) and m; ``balls``: :func:`_robot_balls` when already made (in the frame of p);
+    without taut cables; bordered by the spin about the cable line for one taut cable of nonzero tension) and
+    (m, that bordering); ``balls``: :func:`_robot_balls` when already made (in the frame of p);
     ``position``: the enclosure of the platform-frame origin reported (default p)."""
     n = robot.n
     A, bp, gp = balls or _robot_balls(robot)
@@ -319,6 +337,9 @@ def _enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extr
             reasons.append(f"cable {j + 1} not proven slack (|B - A| - rho in [{s_lo[j]:.3g}, {s_hi[j]:.3g}])")
     m = len(taut)
     K = _bordered_matrix([A[i] for i in taut], [Bs[i] for i in taut], G, list(lam), L, robot.load) if m else None
+    neutral = m == 1 and signs[taut[0]] in ("positive", "negative")  # the spin is a zero of H_r only then
+    if neutral:
+        K = _with_neutral_spin(K, A[taut[0]], Bs[taut[0]], L)
     p_lo, p_hi = bounds(p if position is None else position)
     R_lo, R_hi = bounds(R)
     fields = dict(certified=not reasons, reason="; ".join(reasons) or None, problem=problem, box_width=rel_width * L,
@@ -326,7 +347,7 @@ def _enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extr
                   tension_lower=t_lo, tension_upper=t_hi, tension_signs=tuple(signs), slack_margin_lower=s_lo,
                   slack_margin_upper=s_hi, slack_proven=slack_ok, exists_unique=True, iterations=kr.iterations,
                   newton_step=kr.newton_step, extra=extra or {})
-    return fields, K, m
+    return fields, K, (m, neutral)
 
 
 def _scales(robot, m, cols, L, x=None):
