@@ -588,18 +588,15 @@ def track_kernel(fj, fjt, factor, apply, fres, hom, X, P1, P0, G, TA, TB, H0, op
                     if not np.isfinite(e3):
                         break
                     more = more and e3 <= mc * eprev
+                    for c in range(n):  # (x2 of a rejected step is not used)
+                        x2[c] += d3[c]
                     if more and e3 <= ctol:
                         ok = True
                     elif eprev <= noise_tol and e3 <= 2.0 * eprev and e3 <= noise_tol:
                         ok = True
                         floor_only = True
                     if ok or not more:
-                        if ok:
-                            for c in range(n):
-                                x2[c] += d3[c]
                         break
-                    for c in range(n):
-                        x2[c] += d3[c]
                     eprev = e3
             if dd_allowed and not use_dd and finite and e1 <= ptol and (floor_only or (not ok and e2 <= noise_tol)):
                 # the predictor was good but Newton stalled (or stopped at the round-off floor): residuals in
