@@ -265,7 +265,7 @@ def _with_neutral_spin(K, A, B, L):
     inertia(bordered K) = inertia(H') + (m + 1, m + 1, 0): proving it proves H_r's class with that one zero.  The
     enclosure of A - B contains the true direction, so the proof covers the true matrix."""
     zero = arb(0)
-    w = [zero] * 3 + [(A[k] - B[k]) * L for k in range(3)] + [zero]
+    w = [zero] * 3 + [c * L for c in _vec_sub(A, B)] + [zero]
     return [row + [w[i]] for i, row in enumerate(K)] + [w + [zero]]
 
 
