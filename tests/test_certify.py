@@ -408,23 +408,27 @@ def test_igp_position_certificates_of_bad_roots(table3):
     assert all(t == "unknown" for t in off.tension_signs + bad.tension_signs)
 
 
-def test_igp_position_table4_boundary():
+def test_igp_position_table4_zero_tension():
     """Table 4: G lies in the vertical plane through A_1, A_2 and every real solution is a 2-2 configuration
-    with tau_3 = 0 (printed 0): existence is proven, tau_3 is a boundary case, so none is 'certified'."""
+    with tau_3 = 0 (printed 0): the Krawczyk box alone leaves tau_3 a boundary case; the three-force plane proves it
+    exactly 0 (certificates.zero_tension), so each is certified, with tau_3 = 0 in the table and the JSON."""
     robot = load_robot(ROOT / "examples" / "seed004_table4.toml")
     res = igp_position(robot, [5, 0, 6])
     real = res.real_solutions
     assert len(real) == 4
     for s in real:
         c = s.certificate
-        assert c.exists_unique and not s.certified and not c.certified
-        assert c.tension_signs == ("positive", "positive", "boundary") and "tension 3" in c.reason
+        assert c.exists_unique and s.certified and c.certified and c.reason is None
+        assert c.tension_signs == ("positive", "positive", "zero") and "tau_3 = 0 exactly" in c.extra["zero_tension"]
+        assert s.tensions[2] == 0 and c.tension_lower[2] == c.tension_upper[2] == 0
         assert c.hessian == "proven" and c.hessian_class == s.hessian
     text = igp_table(res)
-    assert text.count("boundary") >= 4 and "not certified: tension 3 is a boundary case" in text
+    assert "boundary" not in text and text.count("tau_3 = 0 exactly") == 4
     # complex solutions carry no certificate
     assert all(s.certificate is None and s.certified is None for s in res.solutions if not s.real)
-    json.dumps(res.to_dict(include_complex=True))
+    out = res.to_dict(include_complex=True)
+    json.dumps(out)
+    assert [s["certificate"]["tension_signs"][2] for s in out["solutions"] if s["certificate"]] == ["zero"] * 4
 
 
 def test_root_certificate_is_not_changed_by_a_ball_retry_in_another_thread():

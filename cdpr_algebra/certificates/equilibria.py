@@ -35,7 +35,8 @@ system above taken from the generated interval evaluator of the taut system, in 
 interval arithmetic, :func:`cdpr_algebra.intervals.real_krawczyk.certify_real_roots`).  Over the certified box, in outward-rounded ball arithmetic (python-flint arb):
 
 * tensions tau_i = lam_i rho_i (IGP: rho_i = |B_i - A_i| enclosed too); sign 'positive', 'negative', or
-  'boundary' when the enclosure contains 0 (a tension zero within rounding is never reported as positive);
+  'boundary' when the enclosure contains 0 (a tension zero within rounding is never reported as positive; the IGP
+  with assigned position proves some of them exactly 0 afterwards, :mod:`.zero_tension`);
 * every slack cable j: |B_j - A_j| - rho_j enclosed, slack proven when its upper end is < 0;
 * pose: p and R enclosed;
 * class of H_r = N^T H N (seed 000 eqs. 28-30, :mod:`cdpr_algebra.model.stability`) from the bordered matrix
@@ -124,8 +125,8 @@ class Certificate:
 
     ``box_width``: max width of the certified unknown box in world length units (each width divided by the scale
     of its unknown, times L); ``tension_lower/upper``: n values, 0 for slack cables; ``tension_signs``: per
-    cable 'positive' | 'negative' | 'boundary' (enclosure contains 0) | 'slack' (not in the taut set) |
-    'unknown' (existence not proven);
+    cable 'positive' | 'negative' | 'boundary' (enclosure contains 0) | 'zero' (proven exactly 0: the IGP with
+    assigned position, :mod:`.zero_tension`) | 'slack' (not in the taut set) | 'unknown' (existence not proven);
     ``slack_margin_lower/upper``: enclosure of |B_j - A_j| - rho_j (NaN for taut cables); ``slack_proven``: every
     slack cable proven slack (vacuously True without slack cables); ``hessian``: 'proven' (``hessian_class`` is
     then the proven class '>', '<' or '<>'; for one taut cable '>=', '<=' or '<>': the spin about the cable line is

@@ -65,6 +65,7 @@ from cdpr_algebra.generated import dialytic as _gd
 from cdpr_algebra.generated import quartics as _gq
 from cdpr_algebra.model.pose import euler_parameters_from_matrix, matrix_from_euler_parameters
 from cdpr_algebra.certificates.equilibria import load_igp_kernels, with_certificates
+from cdpr_algebra.certificates.zero_tension import with_zero_tensions
 from .polish_kernel import polish_quartics
 from .quartic_forms import quartic_matrix
 from .results import IGPResult, make_solutions
@@ -727,7 +728,7 @@ def igp_position(robot: Robot, com_position, *, include_complex: bool = True, fo
         msg += (f"; INCOMPLETE: {found} of the {GENERIC_COUNT} solutions of a generic position found, the others lost "
                 f"to rounding or at infinity here (not decided)")
     if certify:
-        sols = with_certificates(robot, sols, "position")
+        sols = with_zero_tensions(robot, with_certificates(robot, sols, "position"))
     return IGPResult(problem="position", solutions=tuple(sols), seconds=time.perf_counter() - t0, message=msg,
                      generic_count=GENERIC_COUNT, found=found)
 
