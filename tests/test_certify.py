@@ -419,7 +419,7 @@ def test_igp_position_table4_zero_tension():
     for s in real:
         c = s.certificate
         assert c.exists_unique and s.certified and c.certified and c.reason is None
-        assert c.tension_signs == ("positive", "positive", "zero") and "tau_3 = 0 exactly" in c.extra["zero_tension"]
+        assert c.tension_signs == ("positive", "positive", "zero") and "tau_3 = 0 exactly" in c.extra["zero_tension"]["proof"]
         assert s.tensions[2] == 0 and c.tension_lower[2] == c.tension_upper[2] == 0
         assert c.hessian == "proven" and c.hessian_class == s.hessian
     text = igp_table(res)

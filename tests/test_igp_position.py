@@ -341,7 +341,8 @@ def test_table4_solutions(table4_result):
 
 
 def test_table4_hessian_classes_are_those_of_the_2_cable_robot(table4_result):
-    """tau3 = 0: the printed H_r classes are those of cables 1, 2 alone (cable 3 slack)."""
+    """tau3 = 0: the printed H_r classes are those of cables 1, 2 alone (cable 3 slack): by the floating-point
+    class, and as proven with the zero tension (certificates.zero_tension)."""
     robot = _robot(T4)
     two = robot.subset([0, 1])
     G = np.array(T4["x"], dtype=float)
@@ -353,6 +354,8 @@ def test_table4_hessian_classes_are_those_of_the_2_cable_robot(table4_result):
         Hr = reduced_hessian(two.base, B, G, s.tensions[:2], s.lengths[:2], length_scale=robot.size)
         scale = float(np.sum(np.abs(s.tensions[:2]) / s.lengths[:2]) + robot.load / robot.size)
         assert hessian_class(Hr, scale) == hr, conf
+        z = s.certificate.extra["zero_tension"]
+        assert z["cable"] == 3 and z["hessian_of_the_others"] == hr, conf
     assert _match(table4_result.solutions, TABLE4[0][1]).hessian == "<"  # 3-cable H_r of configuration 1
 
 

@@ -70,7 +70,9 @@ def test_planar_equilibria_are_the_proven_zero_tension_roots():
         c = s.certificate
         assert s.certified and c.reason is None and s.tensions[2] == 0
         assert all(g in ("positive", "negative") for g in c.tension_signs[:2])
-        assert "cables 1, 2" in c.extra["zero_tension"]
+        z = c.extra["zero_tension"]
+        assert z["cable"] == 3 and z["holding"] == [1, 2] and "cables 1, 2" in z["proof"]
+        assert z["hessian_of_the_others"] in (">", "<", "<>")
     # the other real roots (if any) keep their proven signs
     assert all(s.certificate.tension_signs[2] in ("positive", "negative") for s in res.real_solutions
                if all(s is not z for z in zero))
@@ -94,7 +96,8 @@ def test_no_proof_away_from_the_root(what):
     robot = _robot()
     s = next(s for s in igp_position(robot, G).real_solutions if s.certificate.tension_signs[2] == "zero")
     args = [robot, G, s.rotation, s.tensions, s.lengths, 2]
-    assert prove_zero_tension(*args) is not None
+    proof = prove_zero_tension(*args)
+    assert proof is not None and proof.cable == 3 and proof.holding == (1, 2)
     if what == "rotation":
         t = 1e-6
         args[2] = s.rotation @ np.array([[np.cos(t), -np.sin(t), 0], [np.sin(t), np.cos(t), 0], [0, 0, 1]])

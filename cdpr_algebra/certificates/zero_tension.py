@@ -22,24 +22,49 @@ for every value of its coefficients in their balls (W, F are irrational: enclose
 the exact ones.  (2) That root, as (R, lam) with lam_k = 0, is an exact root of the 12 IGP equations (rotation and
 balance).  (3) The Krawczyk test proves the IGP root unique in a box X of (u, v, w, lam); the planar root, mapped,
 lies inside X.  So the IGP root is that root, and tau_k = lam_k rho_k = 0 exactly.  When a step fails the tension
-stays 'boundary' (nothing is guessed).
+stays 'boundary' (nothing is guessed).  Over the planar root's enclosure, the class of H_r of cables i, l alone
+(cable k at its length, unloaded) is proven too (the bordered matrix of :mod:`.equilibria`): seed 004 Table 4
+prints that class.
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from fractions import Fraction
 
 import numpy as np
 from flint import arb
 
-from cdpr_algebra.intervals.balls import krawczyk_certify, krawczyk_operator
+from cdpr_algebra.intervals.balls import krawczyk_certify, krawczyk_operator, symmetric_inertias
 
-from .equilibria import BOX_RTOL, FLINT, _robot_data, _scales, _select, taut_system
+from .equilibria import BOX_RTOL, FLINT, _bordered_matrix, _hessian_class, _robot_data, _scales, _select, taut_system
 
-__all__ = ["three_force_plane", "planar_system", "prove_zero_tension", "with_zero_tensions"]
+__all__ = ["ZeroTension", "three_force_plane", "planar_system", "prove_zero_tension", "with_zero_tensions"]
 
 ZERO = "zero"  # tension sign proven exactly 0 (Certificate.tension_signs)
+
+
+@dataclass(frozen=True)
+class ZeroTension:
+    """A proof that tension ``cable`` (1-based) is exactly 0, the other two ``holding`` the load, and the class of
+    the reduced Hessian of those two cables alone (cable ``cable`` at its length, unloaded: seed 004 Table 4
+    prints this class), proven over the planar root's enclosure ('proven', '>' | '<' | '<>') or 'undecided'."""
+
+    cable: int
+    holding: tuple
+    hessian: str
+    hessian_class: str | None
+
+    @property
+    def text(self) -> str:
+        i, l = self.holding
+        return (f"tau_{self.cable} = 0 exactly: cables {i}, {l} hold the load in the plane through A_{i}, A_{l}, G and "
+                f"the load (three-force equilibrium, proven by a planar Krawczyk test); H_r of cables {i}, {l} alone: "
+                + (f"{self.hessian_class} (proven)" if self.hessian == "proven" else "undecided"))
+
+    def to_dict(self) -> dict:
+        return {"cable": self.cable, "holding": list(self.holding), "proof": self.text,
+                "hessian_of_the_others": self.hessian_class if self.hessian == "proven" else "undecided"}
 
 
 def _sub(a, b):
@@ -166,9 +191,10 @@ def _unique_igp_root(robot, G, y0, mapped) -> bool:
             and all(Xi.contains_interior(Ki) for Xi, Ki in zip(X, K)))
 
 
-def prove_zero_tension(robot, com_position, rotation, tensions, lengths, k: int) -> str | None:
+def prove_zero_tension(robot, com_position, rotation, tensions, lengths, k: int) -> ZeroTension | None:
     """A proof that tension ``k`` (0-based) of the IGP root with assigned G = ``com_position`` (``rotation``, the
-    3 ``tensions`` and ``lengths``) is exactly 0 (module doc): its one-line description, or None when not proven."""
+    3 ``tensions`` and ``lengths``) is exactly 0 (module doc), with the class of H_r of the other two cables over
+    the planar root's enclosure; None when not proven."""
     plane = three_force_plane(robot, com_position, k)
     if plane is None:
         return None
@@ -208,15 +234,20 @@ def prove_zero_tension(robot, com_position, rotation, tensions, lengths, k: int)
         y0 = np.concatenate([np.asarray(rotation, float).T.ravel(), lam])  # the certified root, as certified
         if not _unique_igp_root(robot, com_position, y0, mapped):
             return None
-    return (f"tau_{k + 1} = 0 exactly: cables {i + 1}, {l + 1} hold the load in the plane through A_{i + 1}, "
-            f"A_{l + 1}, G and the load (three-force equilibrium, proven by a planar Krawczyk test)")
+        A, bp, _, _ = _robot_data(robot, (i, l), arb, com_at_origin=True)
+        Gb = [arb(float(v)) for v in com_position]
+        B = [[Gb[r] + sum((R[r][q] * bq[q] for q in range(3)), arb(0)) for r in range(3)] for bq in bp]
+        K = _bordered_matrix(A, B, Gb, [li, ll], robot.cable_scale, robot.load)
+        (inertia,) = symmetric_inertias([K])
+    hessian, cls = _hessian_class(inertia, (2, False))
+    return ZeroTension(k + 1, (i + 1, l + 1), hessian, cls)
 
 
 def with_zero_tensions(robot, solutions) -> list:
     """The IGP (assigned position) solutions whose certificate has exactly one 'boundary' tension and everything
     else proven, with that tension proven 0 where :func:`prove_zero_tension` proves it: its sign becomes 'zero',
-    its enclosure [0, 0] and its value 0, the proof is the certificate's ``extra['zero_tension']``, and the
-    certificate is complete when nothing else is missing."""
+    its enclosure [0, 0] and its value 0, the proof (:meth:`ZeroTension.to_dict`) is the certificate's
+    ``extra['zero_tension']``, and the certificate is complete when nothing else is missing."""
     out = []
     for s in solutions:
         c = s.certificate
@@ -236,7 +267,7 @@ def with_zero_tensions(robot, solutions) -> list:
         lo, hi = np.array(c.tension_lower, float), np.array(c.tension_upper, float)
         lo[k] = hi[k] = 0.0
         cert = replace(c, certified=not reasons, reason="; ".join(reasons) or None, tension_signs=tuple(signs),
-                       tension_lower=lo, tension_upper=hi, extra={**c.extra, "zero_tension": proof})
+                       tension_lower=lo, tension_upper=hi, extra={**c.extra, "zero_tension": proof.to_dict()})
         tensions = np.array(s.tensions)
         tensions[k] = 0  # the proven value (the float one was within rounding of it)
         out.append(replace(s, tensions=tensions, certified=cert.certified, certificate=cert))

@@ -62,7 +62,7 @@ def igp_table(result, include_complex: bool = False) -> str:
         lines.append(format_table(headers, rows))
         lines += [f"#{i + 1} not certified: {s.certificate.reason}" for i, s in enumerate(sols)
                   if getattr(s, "certificate", None) is not None and not s.certificate.certified]
-        lines += [f"#{i + 1}: {s.certificate.extra['zero_tension']}" for i, s in enumerate(sols)
+        lines += [f"#{i + 1}: {s.certificate.extra['zero_tension']['proof']}" for i, s in enumerate(sols)
                   if getattr(s, "certificate", None) is not None and "zero_tension" in s.certificate.extra]
         if any(not s.real for s in sols):
             lines.append("complex solutions: rho_i = sqrt(s_i^H s_i) with s_i = B_i - A_i (the Hermitian norm, seed "
