@@ -37,7 +37,7 @@ from flint import arb
 
 from cdpr_algebra.intervals.balls import krawczyk_certify, krawczyk_operator, symmetric_inertias
 
-from .equilibria import BOX_RTOL, FLINT, _bordered_matrix, _hessian_class, _robot_data, _scales, _select, taut_system
+from .equilibria import BOX_RTOL, FLINT, _bordered_matrix, _hessian_class, _robot_data, _scales, igp_position_system
 
 __all__ = ["ZeroTension", "three_force_plane", "planar_system", "prove_zero_tension", "with_zero_tensions"]
 
@@ -165,14 +165,8 @@ def _unique_igp_root(robot, G, y0, mapped) -> bool:
     BOX_RTOL / 2 scale around y0's Newton step, itself <= BOX_RTOL / 2 scale).  So the zero in X is the certified
     root, and it is ``mapped``'s."""
     m = robot.n
-    rows = list(range(12))  # taut_system without lengths: rotation (6), balance (6)
     cols = list(range(3, 12 + m))
-
-    def make(num):
-        A, b, g, f = _robot_data(robot, range(m), num, com_at_origin=True)
-        p = [num(float(v)) for v in G]
-        return lambda y, jac: _select(*taut_system(p + list(y), A, b, g, f, None, jac), rows, cols)
-
+    make = igp_position_system(robot, G)
     sa, sf = make(arb), make(float)
     mid = np.array([float(v.mid()) for v in mapped])
     rad = np.array([float(v.rad()) for v in mapped])
