@@ -575,12 +575,21 @@ def certify_igp_orientation(robot, rotation, position, tensions, lengths, box_rt
     x0 = np.concatenate([np.asarray(position, float), np.asarray(tensions, float) / np.asarray(lengths, float)])
     scale = _scales(robot, m, cols, L, x0)
     kr = _krawczyk(make_system, x0, scale, box_rtol)
-    if not kr.proven:
-        return _failed("igp_orientation", robot.n, kr.reason, kr, list(range(m)))
-    X = kr.enclosure
     R = [[arb(float(R0[k][j])) for j in range(3)] for k in range(3)]
-    return _consequences("igp_orientation", robot, list(range(m)), None, X[0:3], R, X[3:], kr,
-                         kr.relative_width(scale), L)
+    if kr.proven:
+        X = kr.enclosure
+        return _consequences("igp_orientation", robot, list(range(m)), None, X[0:3], R, X[3:], kr,
+                             kr.relative_width(scale), L)
+    retry = _retry_with_polish(make_system, x0, lambda y: _scales(robot, m, cols, L, y), box_rtol)
+    if retry is None:
+        return _failed("igp_orientation", robot.n, kr.reason, kr, list(range(m)))
+    kr, scale, extra = retry
+    from flint import ctx
+
+    with FLINT, ctx.workprec(RETRY_PREC):
+        X = kr.enclosure
+        return _consequences("igp_orientation", robot, list(range(m)), None, X[0:3], R, X[3:], kr,
+                             kr.relative_width(scale), L, extra)
 
 
 def certify_igp_position(robot, com_position, rotation, tensions, lengths, box_rtol: float = BOX_RTOL) -> Certificate:
@@ -666,23 +675,31 @@ def igp_position_system(robot, com_position):
 
 
 def _igp_position_retry(robot, G, y0, box_rtol):
-    """(KrawczykResult, scale, extra) of an IGP root (assigned position) that the compiled double-precision test did
-    not prove, proven at :data:`RETRY_PREC` bits with Newton steps in ball arithmetic (``extra.precision_bits``);
-    or, when the root as reported is farther from the zero than the box tolerance (doubles locate an ill-conditioned
-    root only to its condition number times 1e-16), at the root polished by Newton's method with the residual at
-    that precision (moves up to :data:`IGP_POLISH_RTOL` of the scale; ``extra.polished`` the move, ``extra.polished_root``
-    the polished (u, v, w, lam), which the caller reports instead); None when neither is proven.  Measured
-    (thirty-third session): seed 004 Table 3's robot with its base scaled by 1e4 (scaled condition number 6e17):
-    3 of its 4 real roots were not proven in double precision, all 4 are here; at G = (2e5, 3e5, 1e5) its 4 real
-    roots were 2e-9 .. 7e-9 (relative) off their zeros, and are proven once polished."""
+    """:func:`_retry_with_polish` of an IGP root with assigned position (G; y0 = (u, v, w, lam))."""
+    m = robot.n
+    cols = list(range(3, 12 + m))
+    return _retry_with_polish(igp_position_system(robot, G), y0,
+                              lambda y: _scales(robot, m, cols, robot.cable_scale, y), box_rtol)
+
+
+def _retry_with_polish(make, y0, scales, box_rtol):
+    """(KrawczykResult, scale, extra) of an IGP root y0 of the system built by ``make`` (as :func:`_krawczyk`;
+    ``scales(y)``: the scale of each unknown at y) that the double-precision test did not prove, proven at
+    :data:`RETRY_PREC` bits with Newton steps in ball arithmetic (``extra.precision_bits``); or, when the root as
+    reported is farther from the zero than the box tolerance (doubles locate an ill-conditioned root only to its
+    condition number times 1e-16), at the root polished by Newton's method with the residual at that precision
+    (moves up to :data:`IGP_POLISH_RTOL` of the scale; ``extra.polished`` the move, ``extra.polished_root`` the
+    polished unknowns, which the IGP reports instead); None when neither is proven.  Measured (thirty-third
+    session): seed 004 Table 3's robot with its base scaled by 1e4 (scaled condition number 6e17), assigned
+    position: 3 of its 4 real roots were not proven in double precision, all 4 are here; at G = (2e5, 3e5, 1e5) its
+    4 real roots were 2e-9 .. 7e-9 (relative) off their zeros, and are proven once polished.  Assigned orientation,
+    Tables 1 and 2's robots with their bases scaled by 1 .. 1e5 at two orientations: 9 of 20 roots proven in double
+    precision, 20 of 20 here (11 retried)."""
     from flint import ctx
 
     from cdpr_algebra.intervals.balls import refined_root
 
-    make = igp_position_system(robot, G)
-    m = robot.n
-    cols = list(range(3, 12 + m))
-    scale = _scales(robot, m, cols, robot.cable_scale, y0)
+    scale = scales(y0)
     with FLINT, ctx.workprec(RETRY_PREC):
         kr = _krawczyk(make, y0, scale, box_rtol, REFINE_STEPS)
         if kr.proven:
@@ -692,10 +709,12 @@ def _igp_position_retry(robot, G, y0, box_rtol):
             C = np.linalg.inv(np.asarray(sf(list(y0), True)[1], dtype=float))
         except np.linalg.LinAlgError:
             return None
+        if not np.all(np.isfinite(C)):
+            return None
         y = refined_root(lambda x: sa(x, False)[0], C, y0, scale, REFINE_STEPS)
         if y is None or not np.all(np.abs(y - y0) <= IGP_POLISH_RTOL * scale):
             return None
-        scale = _scales(robot, m, cols, robot.cable_scale, y)
+        scale = scales(y)
         kr = _krawczyk(make, y, scale, box_rtol, REFINE_STEPS)
         if not kr.proven:
             return None

@@ -23,7 +23,7 @@ import sympy as sp
 from cdpr_algebra.model.errors import CdprInputError
 from cdpr_algebra.generated import igp_orientation as gen
 from cdpr_algebra.certificates.equilibria import with_certificates
-from .results import IGPResult, SolutionSet, make_solution
+from .results import IGPResult, SolutionSet, at_polished_roots, make_solution
 from cdpr_algebra.model.pose import rotation_taking
 from cdpr_algebra.model.robot import Robot
 
@@ -412,7 +412,7 @@ def igp_orientation(robot: Robot, rotation, *, exact: bool = False, certify: boo
 
     def done(solutions=(), sset=None, msg=""):
         if certify:
-            solutions = with_certificates(robot, solutions, "orientation")
+            solutions = at_polished_roots(robot, with_certificates(robot, solutions, "orientation"))
         return IGPResult("orientation", tuple(solutions), sset, time.perf_counter() - t0, msg)
 
     Xw, sset = _locate(prob, tol)

@@ -53,7 +53,6 @@ from __future__ import annotations
 
 import sys
 import time
-from dataclasses import replace
 from fractions import Fraction
 from functools import reduce
 from math import lcm
@@ -69,7 +68,7 @@ from cdpr_algebra.certificates.equilibria import load_igp_kernels, with_certific
 from cdpr_algebra.certificates.zero_tension import with_zero_tensions
 from .polish_kernel import polish_quartics
 from .quartic_forms import quartic_matrix
-from .results import IGPResult, make_solutions
+from .results import IGPResult, at_polished_roots, make_solutions
 from cdpr_algebra.model.robot import Robot
 
 load_igp_kernels()  # the certificates' compiled kernels, loaded with the module, not in the first solve's time
@@ -729,28 +728,9 @@ def igp_position(robot: Robot, com_position, *, include_complex: bool = True, fo
         msg += (f"; INCOMPLETE: {found} of the {GENERIC_COUNT} solutions of a generic position found, the others lost "
                 f"to rounding or at infinity here (not decided)")
     if certify:
-        sols = with_zero_tensions(robot, _at_polished_roots(robot, with_certificates(robot, sols, "position")))
+        sols = with_zero_tensions(robot, at_polished_roots(robot, with_certificates(robot, sols, "position")))
     return IGPResult(problem="position", solutions=tuple(sols), seconds=time.perf_counter() - t0, message=msg,
                      generic_count=GENERIC_COUNT, found=found)
-
-
-def _at_polished_roots(robot, solutions) -> list:
-    """The solutions whose certificate proved the root polished at higher precision
-    (``certificate.extra['polished_root']``, :func:`cdpr_algebra.certificates.equilibria.certify_igp_positions`)
-    rebuilt at that root (its rotation; lengths and tensions from it), keeping the chart of their Euler parameters."""
-    out = []
-    for s in solutions:
-        c = s.certificate
-        if c is None or "polished_root" not in c.extra:
-            out.append(s)
-            continue
-        y = np.asarray(c.extra["polished_root"], dtype=float)
-        R = np.column_stack([y[0:3], y[3:6], y[6:9]])
-        e = euler_parameters_from_matrix(R)
-        k = int(np.argmax(np.abs(s.euler_parameters) == 1))  # the component the chart sets to 1
-        new = make_solutions(robot, [s.com_position], [R], [e / e[k]])[0]
-        out.append(replace(new, certified=s.certified, certificate=c))
-    return out
 
 
 # ----------------------------------------------------------------------------------------- exact mode

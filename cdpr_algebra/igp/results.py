@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -100,6 +100,29 @@ def make_solution(robot, com_position, rotation, euler_parameters=None, real_tol
     """Complete one IGP root (G and R known) with lengths, tensions, residual and H_r class (see make_solutions)."""
     eps = None if euler_parameters is None else [euler_parameters]
     return make_solutions(robot, [com_position], [rotation], eps, real_tol)[0]
+
+
+def at_polished_roots(robot, solutions) -> list:
+    """The solutions whose certificate proved the root polished at higher precision
+    (``certificate.extra['polished_root']``: (u, v, w, lam) with assigned position, (p, lam) with assigned
+    orientation; :mod:`cdpr_algebra.certificates.equilibria`) rebuilt at that root (lengths and tensions from its
+    pose), the Euler parameters kept in their chart (the component equal to 1 stays 1)."""
+    out = []
+    for s in solutions:
+        c = s.certificate
+        if c is None or "polished_root" not in c.extra:
+            out.append(s)
+            continue
+        y = np.asarray(c.extra["polished_root"], dtype=float)
+        if c.problem == "igp_position":
+            R, G = np.column_stack([y[0:3], y[3:6], y[6:9]]), np.real(s.com_position)
+            e = euler_parameters_from_matrix(R)
+            e = e / e[int(np.argmax(np.abs(s.euler_parameters) == 1))]  # the component the chart sets to 1
+        else:
+            R, e = np.real(s.rotation), s.euler_parameters
+            G = y[0:3] + R @ robot.com
+        out.append(replace(make_solutions(robot, [G], [R], [e])[0], certified=s.certified, certificate=c))
+    return out
 
 
 def make_solutions(robot, com_positions, rotations, euler_parameters=None, real_tol: float = 1e-9) -> list:
