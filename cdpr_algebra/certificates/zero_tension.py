@@ -37,7 +37,8 @@ from flint import arb
 
 from cdpr_algebra.intervals.balls import krawczyk_certify, krawczyk_operator, symmetric_inertias
 
-from .equilibria import BOX_RTOL, FLINT, _bordered_matrix, _hessian_class, _robot_data, _scales, igp_position_system
+from .equilibria import (BOX_RTOL, FLINT, _bordered_matrix, _cross, _dot, _hessian_class, _robot_data, _scales,
+                         _vec_sub, igp_position_system)
 
 __all__ = ["ZeroTension", "three_force_plane", "planar_system", "prove_zero_tension", "with_zero_tensions"]
 
@@ -67,18 +68,6 @@ class ZeroTension:
                 "hessian_of_the_others": self.hessian_class if self.hessian == "proven" else "undecided"}
 
 
-def _sub(a, b):
-    return [a[k] - b[k] for k in range(3)]
-
-
-def _dot(a, b):
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
-def _cross(a, b):
-    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-
-
 def _exact(v):
     return [Fraction(float(c)) for c in v]
 
@@ -90,13 +79,13 @@ def three_force_plane(robot, com_position, k: int):
     b_i, b_l are not parallel (the platform plane through b'_i, b'_l, g')."""
     i, l = (j for j in range(3) if j != k)
     G = _exact(com_position)
-    Ai, Al = _sub(_exact(robot.base[i]), G), _sub(_exact(robot.base[l]), G)
+    Ai, Al = _vec_sub(_exact(robot.base[i]), G), _vec_sub(_exact(robot.base[l]), G)
     d = _exact(robot.load_direction)
-    normal = _cross(_sub(Al, Ai), d)
+    normal = _cross(_vec_sub(Al, Ai), d)
     if not any(normal) or _dot(Ai, normal) != 0:
         return None
     g = _exact(robot.com)
-    bi, bl = _sub(_exact(robot.platform[i]), g), _sub(_exact(robot.platform[l]), g)
+    bi, bl = _vec_sub(_exact(robot.platform[i]), g), _vec_sub(_exact(robot.platform[l]), g)
     if not any(_cross(bi, bl)):
         return None
     return i, l, Ai, Al, d, bi, bl
@@ -194,7 +183,7 @@ def prove_zero_tension(robot, com_position, rotation, tensions, lengths, k: int)
         return None
     i, l, Ai, Al, d, bi, bl = plane
     with FLINT:
-        W = _frame(d, _sub(Al, Ai))  # e1 along d, e3 the plane's normal
+        W = _frame(d, _vec_sub(Al, Ai))  # e1 along d, e3 the plane's normal
         Fr = _frame(bi, bl)
         a = [_in_plane([_ball(c) for c in A], W[0], W[1]) for A in (Ai, Al)]
         b = [_in_plane([_ball(c) for c in B], Fr[0], Fr[1]) for B in (bi, bl)]
