@@ -719,7 +719,9 @@ def igp_position(robot: Robot, com_position, *, include_complex: bool = True, fo
     if half:
         msg += f", {half} with e0 = 0"
     if rejected:
-        msg += f"; {rejected} common roots of the quartics rejected (not equilibria)"
+        msg += (f"; {rejected} common root(s) of the quartics rejected: force and moment balance not met at them "
+                f"(residual above the tolerance)" + (", perhaps missing solutions computed inaccurately"
+                                                     if found < GENERIC_COUNT else ", not equilibria"))
     if "message" in info:
         msg += "; " + info["message"]
     if info.get("second_pass", {}).get("new"):
