@@ -51,7 +51,7 @@ def _planar_rotations(robot, G):
             lam = np.linalg.lstsq(np.column_stack([A[0] - Bw[0], A[1] - Bw[1]]), -f, rcond=None)[0]
             return float(np.dot(sum(l * np.cross(b, a) for l, a, b in zip(lam, A, Bw)), e3))
 
-        ts = np.linspace(0.0, 2 * np.pi, 20001)
+        ts = np.linspace(0.0, 2 * np.pi, 4001)
         ms = np.array([moment(t) for t in ts])
         for k in np.flatnonzero((np.sign(ms[:-1]) != np.sign(ms[1:])) & (np.abs(ms[:-1]) + np.abs(ms[1:]) < 1e3)):
             out.append(rotation(brentq(moment, ts[k], ts[k + 1], xtol=1e-14)))
