@@ -118,6 +118,7 @@ from pathlib import Path
 
 import numpy as np
 
+from cdpr_algebra.model.line_dependence import lines_dependent_everywhere
 from cdpr_algebra.model.rod_equations import BINARY
 from cdpr_algebra.model.taut_equations import decode
 from cdpr_algebra.model.taut_sets import lengths_and_taut_sets
@@ -145,6 +146,9 @@ REAL_TOL = 1e-6
 SLACK_TOL = 1e-9
 TENSION_RTOL = 1e-9
 EXCLUSION_BOXES = 64  # box budget of the interval exclusion test run before tracking a taut set
+LINES_DEPENDENT = ("the {m} cable lines are linearly dependent at every pose (architectural singularity: exact rank at "
+                   "random rational poses, model.line_dependence): its equilibria, if any, are not isolated and a "
+                   "homotopy cannot count them; not tracked")
 _GENERIC: dict = {}
 
 
@@ -595,6 +599,9 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     if line is not None:  # taut anchors and G on one line: families, solved as a rod (dgp.rod)
         fields = solve_rod_taut_set(robot, rho, cables, line, seed, options, TENSION_RTOL * robot.load)
         return DGPSubproblem(taut1, seconds=time.perf_counter() - t0, **fields), [], None
+    if lines_dependent_everywhere(robot, cables):  # no isolated equilibrium: nothing for a homotopy to count
+        return DGPSubproblem(taut1, 0, 0, 0, 0, time.perf_counter() - t0, LINES_DEPENDENT.format(m=m),
+                             complete=False), [], None
     if not generic_path(m).exists():
         return DGPSubproblem(taut1, 0, 0, 0, 0, time.perf_counter() - t0,
                              f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})",
