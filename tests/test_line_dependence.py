@@ -10,6 +10,7 @@ import pytest
 
 from cdpr_algebra.dgp.solve import solve_taut_set
 from cdpr_algebra.model.line_dependence import lines_dependent_everywhere
+from cdpr_algebra.model.pose import matrix_from_euler_parameters
 from cdpr_algebra.model.robot import Robot, load_robot
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -31,12 +32,7 @@ def _smallest_singular_values(robot, cables, n=10, seed=1):
     rng = np.random.default_rng(seed)
     out = []
     for _ in range(n):
-        q = rng.normal(size=4)
-        q /= np.linalg.norm(q)
-        w, x, y, z = q
-        R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                      [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                      [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+        R = matrix_from_euler_parameters(rng.normal(size=4))
         B = rng.normal(size=3) + np.asarray(robot.platform)[list(cables)] @ R.T
         u = np.asarray(robot.base)[list(cables)] - B
         s = np.linalg.svd(np.column_stack([u, np.cross(B, u)]), compute_uv=False)
