@@ -524,3 +524,21 @@ def test_fewer_than_24_roots_is_incomplete_with_exit_status_3(capsys):
     assert "incomplete" in capsys.readouterr().err
     assert IGPResult("position", (), generic_count=24, found=24).status == "complete"
     assert IGPResult("position", (), generic_count=24, found=23).status == "incomplete"
+
+
+def test_g_on_the_load_line_through_an_anchor_is_named():
+    """G straight along the load from A_3 (Table 4's robot, G = (0, 12, 4)): cable 3 alone can hold the load and
+    the platform turns about it, so those solutions are circles.  The message says so (exact test), the listed
+    points are of that kind (tau_1 = tau_2 = 0, B_3 on the line through G along the load) and none is certified; the
+    result stays incomplete.  1e-9 off that line, nothing is said."""
+    from cdpr_algebra.model.robot import load_robot
+
+    robot = load_robot("examples/seed004_table4.toml")
+    G = np.array([0.0, 12.0, 4.0])
+    res = igp_position(robot, G)
+    assert "on the load line through A_3" in res.message and res.status == "incomplete"
+    for s in res.real_solutions:
+        assert not s.certified and np.allclose(s.tensions[:2], 0, atol=1e-6 * robot.load)
+        B3 = G + s.rotation @ (robot.platform[2] - robot.com)
+        assert np.linalg.norm(np.cross(B3 - G, robot.load_direction)) < 1e-8
+    assert "load line" not in igp_position(robot, G + [1e-9, 0, 0], certify=False).message

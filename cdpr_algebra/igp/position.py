@@ -729,10 +729,29 @@ def igp_position(robot: Robot, com_position, *, include_complex: bool = True, fo
     if found < GENERIC_COUNT:
         msg += (f"; INCOMPLETE: {found} of the {GENERIC_COUNT} solutions of a generic position found, the others lost "
                 f"to rounding or at infinity here (not decided)")
+    line = _on_a_load_line(robot, G)
+    if line is not None:
+        others = ", ".join(str(j + 1) for j in range(robot.n) if j != line)
+        msg += (f"; G is on the load line through A_{line + 1} (exactly, in the file's doubles): cable {line + 1} alone "
+                f"holds the load, and with cables {others} unloaded the platform turns freely about it: those "
+                f"solutions form circles, not points (the dialytic method cannot count them, and the points of them "
+                f"listed are not certified)")
     if certify:
         sols = with_zero_tensions(robot, at_polished_roots(robot, with_certificates(robot, sols, "position")))
     return IGPResult(problem="position", solutions=tuple(sols), seconds=time.perf_counter() - t0, message=msg,
                      generic_count=GENERIC_COUNT, found=found)
+
+
+def _on_a_load_line(robot: Robot, G):
+    """The 0-based cable i whose base point A_i lies on the line through G along the load (G - A_i parallel to the
+    load direction, exactly in rationals from the doubles), or None."""
+    g = [Fraction(float(v)) for v in np.real(G)]
+    d = [Fraction(float(v)) for v in robot.load_direction]
+    for i, A in enumerate(robot.base):
+        a = [g[k] - Fraction(float(A[k])) for k in range(3)]
+        if not any(a[(k + 1) % 3] * d[(k + 2) % 3] - a[(k + 2) % 3] * d[(k + 1) % 3] for k in range(3)):
+            return i
+    return None
 
 
 # ----------------------------------------------------------------------------------------- exact mode
