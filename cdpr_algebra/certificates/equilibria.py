@@ -301,6 +301,11 @@ def _finish(parts) -> list:
             for k, (fields, _, borders) in enumerate(parts)]
 
 
+def boundary_reason(i: int) -> str:
+    """The certificate's reason for the 0-based cable i whose tension enclosure contains 0."""
+    return f"tension {i + 1} is a boundary case (its enclosure contains 0)"
+
+
 def _enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extra=None, balls=None, position=None):
     """The fields of the certificate of :func:`_consequences` but the Hessian's, the bordered matrix K (None
     without taut cables; bordered by the spin about the cable line for one taut cable of nonzero tension) and
@@ -323,7 +328,7 @@ def _enclosures(problem, robot, taut, lengths, p, R, lam, kr, rel_width, L, extr
         tau[i] = lam[k] * rho_i
         signs[i] = sign(tau[i])
         if signs[i] == "boundary":
-            reasons.append(f"tension {i + 1} is a boundary case (its enclosure contains 0)")
+            reasons.append(boundary_reason(i))
     t_lo, t_hi = bounds(tau)
     s_lo, s_hi = _nan(n), _nan(n)
     slack_ok = True
@@ -612,7 +617,7 @@ def certify_igp_positions(robot, com_position, roots, box_rtol: float = BOX_RTOL
     L = robot.cable_scale
     n = 12 + m
     rows = list(range(6)) + list(range(6 + m, n))
-    cols = list(range(3, n))
+    cols = _igp_position_columns(robot)
     Gf = np.asarray(com_position, float).tolist()
     roots = list(roots)
     if not roots:
@@ -621,7 +626,7 @@ def certify_igp_positions(robot, com_position, roots, box_rtol: float = BOX_RTOL
     Y = np.array([np.concatenate([np.asarray(R, float).T.ravel(), np.asarray(t, float) / np.asarray(rho, float)])
                   for R, t, rho in roots]).reshape(N, n - 3)
     F0, J0 = _float_systems(Gf, Y, _parameters(*_robot_data(robot, range(m), float, com_at_origin=True)), rows, cols)
-    S = np.array([_scales(robot, m, cols, L, Y[j]) for j in range(N)]).reshape(N, n - 3)
+    S = np.array([igp_position_scales(robot, Y[j]) for j in range(N)]).reshape(N, n - 3)
     boxes = certify_real_roots(_compiled_subsystem_krawczyk(robot, Gf, rows, cols), Y, S, box_rtol,
                                inverse=_inverses(J0), residual=F0)
     G = [arb(v) for v in Gf]
@@ -660,15 +665,24 @@ def certify_igp_positions(robot, com_position, roots, box_rtol: float = BOX_RTOL
 IGP_POLISH_RTOL = 1e-7  # largest polish of an IGP root (relative to the scale): 10x the 7.4e-9 measured far away
 
 
+def _igp_position_columns(robot) -> list:
+    """The unknowns (u, v, w, lam) of the IGP with assigned position among those (p, u, v, w, lam) of the taut system."""
+    return list(range(3, 12 + robot.n))
+
+
+def igp_position_scales(robot, y):
+    """:func:`_scales` of the IGP unknowns y = (u, v, w, lam) with assigned position."""
+    return _scales(robot, robot.n, _igp_position_columns(robot), robot.cable_scale, y)
+
+
 def igp_position_system(robot, com_position):
     """``make(num) -> system(y, jacobian) -> (F, J)``: the 12 x 12 system of the IGP with assigned position in
     plain arithmetic (``num`` = arb or float), unknowns y = (u, v, w, lam), the platform frame at G
     (:func:`certify_igp_position`)."""
-    m = robot.n
-    cols = list(range(3, 12 + m))
+    cols = _igp_position_columns(robot)
 
     def make(num):
-        A, b, g, f = _robot_data(robot, range(m), num, com_at_origin=True)
+        A, b, g, f = _robot_data(robot, range(robot.n), num, com_at_origin=True)
         p = [num(float(v)) for v in com_position]
         return lambda y, jac: _select(*taut_system(p + list(y), A, b, g, f, None, jac), range(12), cols)
     return make
@@ -676,10 +690,7 @@ def igp_position_system(robot, com_position):
 
 def _igp_position_retry(robot, G, y0, box_rtol):
     """:func:`_retry_with_polish` of an IGP root with assigned position (G; y0 = (u, v, w, lam))."""
-    m = robot.n
-    cols = list(range(3, 12 + m))
-    return _retry_with_polish(igp_position_system(robot, G), y0,
-                              lambda y: _scales(robot, m, cols, robot.cable_scale, y), box_rtol)
+    return _retry_with_polish(igp_position_system(robot, G), y0, lambda y: igp_position_scales(robot, y), box_rtol)
 
 
 def _retry_with_polish(make, y0, scales, box_rtol):

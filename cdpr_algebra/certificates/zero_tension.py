@@ -37,8 +37,8 @@ from flint import arb
 
 from cdpr_algebra.intervals.balls import krawczyk_certify, krawczyk_operator, symmetric_inertias
 
-from .equilibria import (BOX_RTOL, FLINT, _bordered_matrix, _cross, _dot, _hessian_class, _robot_data, _scales,
-                         _vec_sub, igp_position_system)
+from .equilibria import (BOX_RTOL, FLINT, _bordered_matrix, _cross, _dot, _hessian_class, _robot_data, _vec_sub,
+                         boundary_reason, igp_position_scales, igp_position_system)
 
 __all__ = ["ZeroTension", "three_force_plane", "planar_system", "prove_zero_tension", "with_zero_tensions"]
 
@@ -153,13 +153,11 @@ def _unique_igp_root(robot, G, y0, mapped) -> bool:
     False) and the box in which :func:`.equilibria.certify_igp_positions` proved the reported root (half-width <=
     BOX_RTOL / 2 scale around y0's Newton step, itself <= BOX_RTOL / 2 scale).  So the zero in X is the certified
     root, and it is ``mapped``'s."""
-    m = robot.n
-    cols = list(range(3, 12 + m))
     make = igp_position_system(robot, G)
     sa, sf = make(arb), make(float)
     mid = np.array([float(v.mid()) for v in mapped])
     rad = np.array([float(v.rad()) for v in mapped])
-    scale = _scales(robot, m, cols, robot.cable_scale, y0)
+    scale = igp_position_scales(robot, y0)
     if np.any(np.abs(mid - y0) > BOX_RTOL * scale):  # not the reported root: it was certified within that of y0
         return False
     r = 2 * BOX_RTOL * scale + 2 * rad
@@ -243,8 +241,7 @@ def with_zero_tensions(robot, solutions) -> list:
             out.append(s)
             continue
         k = boundary[0]
-        reasons = [r for r in (c.reason or "").split("; ")
-                   if r and r != f"tension {k + 1} is a boundary case (its enclosure contains 0)"]
+        reasons = [r for r in (c.reason or "").split("; ") if r and r != boundary_reason(k)]
         signs = list(c.tension_signs)
         signs[k] = ZERO
         lo, hi = np.array(c.tension_lower, float), np.array(c.tension_upper, float)

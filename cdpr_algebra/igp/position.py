@@ -745,13 +745,11 @@ def igp_position(robot: Robot, com_position, *, include_complex: bool = True, fo
 def _on_a_load_line(robot: Robot, G):
     """The 0-based cable i whose base point A_i lies on the line through G along the load (G - A_i parallel to the
     load direction, exactly in rationals from the doubles), or None."""
-    g = [Fraction(float(v)) for v in np.real(G)]
-    d = [Fraction(float(v)) for v in robot.load_direction]
-    for i, A in enumerate(robot.base):
-        a = [g[k] - Fraction(float(A[k])) for k in range(3)]
-        if not any(a[(k + 1) % 3] * d[(k + 2) % 3] - a[(k + 2) % 3] * d[(k + 1) % 3] for k in range(3)):
-            return i
-    return None
+    def exact(v):
+        return np.array([Fraction(float(c)) for c in np.real(v)], dtype=object)
+
+    g, d = exact(G), exact(robot.load_direction)
+    return next((i for i, A in enumerate(robot.base) if not np.cross(g - exact(A), d).any()), None)
 
 
 # ----------------------------------------------------------------------------------------- exact mode
