@@ -14,11 +14,13 @@ import cdpr_algebra.intervals.operators as iop
 import cdpr_algebra.intervals.scalar_kernels as isk
 from cdpr_algebra.intervals.arithmetic import Interval, inv_sqr
 from cdpr_algebra.intervals.operators import QuadraticSystem, krawczyk, mr_matmul
-from cdpr_algebra.dgp.solve import available_m
+from cdpr_algebra.dgp.solve import available_m, taut_set_roots
+from cdpr_algebra.model.taut_equations import decode
 from cdpr_algebra.bp.search import build_model, solve_taut_set_interval
 from cdpr_algebra.model.pose import rotation_taking
 from cdpr_algebra.model.robot import Robot, load_robot
 from shared_runs import dgp_run
+from equilibria import all_taut_equilibrium_robot
 
 ROOT = Path(__file__).resolve().parent.parent
 TABLES = json.loads((ROOT / "tests" / "data" / "seed000_tables.json").read_text())["tables"]
@@ -239,6 +241,22 @@ def test_two_cable_equilibrium_built_by_construction_is_found(seed):
         assert not hits  # a negative tension: not admissible
 
 
+@pytest.mark.parametrize("m, seed", [(4, 21), (5, 22)])
+def test_four_reference_points_bisected_on_the_first_three(m, seed):
+    """Taut anchors off one plane: the model has four reference points and the search bisects the coordinates of
+    the first three only (they fix the pose; the fourth follows from them by eq. 17).  The equilibrium built by
+    construction (every tension above 0.05 Q) is proven, once, with its tensions, and the search is complete."""
+    robot, p, R, tau = all_taut_equilibrium_robot(m, seed)
+    cables = tuple(range(m))
+    model = build_model(robot, robot.lengths, cables)
+    assert model.l == 4 and list(model.bisect_cols) == list(range(9))
+    assert list(model.core_cols[:12]) == list(range(12))  # the fourth point's columns are core, not bisected
+    sub = solve_taut_set_interval(robot, robot.lengths, cables)
+    assert sub.complete and sub.n_undecided == 0
+    hits = [s for s in sub.solutions if np.max(np.abs(s.position - p)) < 1e-7 and np.max(np.abs(s.rotation - R)) < 1e-7]
+    assert len(hits) == 1 and np.allclose(hits[0].tensions, tau, rtol=1e-8, atol=1e-9 * robot.load)
+
+
 def test_one_cable_turning_angle_search_agrees_with_the_analytic_arcs():
     """m = 1: the interval search of the turning angle against :mod:`.dgp_one_cable` (analytic arcs) on random
     robots; both count the candidates G below / above the anchor that keep every other cable slack."""
@@ -427,13 +445,24 @@ def test_crosscheck_agrees_on_every_subproblem_of_test3():
     """Seed 000 Test 3 (Sec. 5.3, MARIONET-VR): the interval B&P and the homotopy agree on all 63 subproblems.
     Published: 3, 1, 7, 4, 2 equilibria with 6, 5, 4, 3, 2 taut cables.  The printed 5-cable row (cables 1, 2, 3,
     5, 6) is an equilibrium of its equation set with cable 4 over its length (seeds README, tables note): the
-    interval solver proves that solution and rejects it as inadmissible, so 0 with 5 taut cables; the other counts
-    as published.  The printed 6-cable rows 1-3 are among the proven solutions, row 3 with a small tension tau_4
-    whose enclosure is positive."""
+    interval solver finds no admissible solution there (whether it proves that root and rejects it, or prunes it by
+    cable 4's sphere, depends on its bisection), and the homotopy's roots of that equation set hold the printed
+    row, proven, with cable 4 1.26 mm over its length (the note's refined excess); so 0 with 5 taut cables, the
+    other counts as published.  The printed 6-cable rows 1-3 are among the proven solutions, row 3 with a small
+    tension tau_4 whose enclosure is positive."""
     robot, subs, by_m = _crosscheck_all_agree("seed000_test3")
     assert by_m == {1: 0, 2: 2, 3: 4, 4: 7, 5: 0, 6: 3}
     five = next(s for s in subs if s.taut == (1, 2, 3, 5, 6))
-    assert five.admissible == 0 and five.proven_inadmissible >= 1
+    assert five.admissible == 0 and five.complete
+    row4 = TABLES["3"]["rows"][3]
+    _, Z, proven = taut_set_roots(robot, robot.lengths, (0, 1, 2, 4, 5))
+    p, R, lam = decode(Z, 5)
+    k = int(np.argmin(np.max(np.abs(p - row4["position"]), axis=1)))
+    assert proven[k] and np.max(np.abs(p[k] - row4["position"])) <= 1.5e-3
+    tau = lam[k].real * robot.lengths[[0, 1, 2, 4, 5]]
+    assert np.max(np.abs(tau - np.array(row4["tensions"])[[0, 1, 2, 4, 5]])) <= 5e-3
+    excess = np.linalg.norm(p[k] + R[k] @ robot.platform[3] - robot.base[3]) - robot.lengths[3]
+    assert abs(excess - row4["known_issue"]["refined_excess"]) <= 1e-5
     six = next(s for s in subs if len(s.taut) == 6)
     rows = TABLES["3"]["rows"]
     for row in rows[:3]:

@@ -47,7 +47,8 @@ def _branch_and_prune(model: Model, opts: BPOptions):
     undecided = _Undecided()
     nboxes = 0
     nbis = 0
-    pose_n = len(model.bisect_cols)
+    pose_n = len(model.bisect_cols)  # the bisected columns lead the core ones
+    pose_all = h - model.m  # every pose column of the core
 
     def record(Xs_lo, Xs_hi, E_lo, E_hi):
         nonlocal regions_lo, regions_hi
@@ -191,7 +192,7 @@ def _branch_and_prune(model: Model, opts: BPOptions):
             tiny = np.isfinite(wmax_all) & (wmax_all < opts.eps)
             for k in np.flatnonzero(tiny):
                 undecided.add(lo[k, core], hi[k, core], f"minimum width {opts.eps:g} reached")
-            stuck = ~np.isfinite(wmax_all) & (wmax_pose < opts.eps)
+            stuck = ~np.isfinite(wmax_all) & (w[:, :pose_all].max(axis=1) < opts.eps)
             for k in np.flatnonzero(stuck):
                 undecided.add(lo[k, core], hi[k, core], "tension unbounded at minimum pose width")
             go = ~tiny & ~stuck
