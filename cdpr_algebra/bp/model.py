@@ -36,6 +36,12 @@ def _fdet(a, b, c):
     return _fdot(a, _fcross(b, c))
 
 
+def _area2(P, tri):
+    """|(P_j - P_i) x (P_k - P_i)|^2 (4 x the squared area of the triangle of points tri = (i, j, k)), exact."""
+    nrm = _fcross(_fsub(P[tri[1]], P[tri[0]]), _fsub(P[tri[2]], P[tri[0]]))
+    return _fdot(nrm, nrm)
+
+
 def _fsolve3(cols, rhs):
     """x with sum_k x_k cols[k] = rhs (Cramer), or None if singular."""
     D = _fdet(*cols)
@@ -197,14 +203,12 @@ class Model:
         else:
             best, refs = None, None
             for tri in itertools.combinations(taut, 3):
-                nrm = _fcross(_fsub(P[tri[1]], P[tri[0]]), _fsub(P[tri[2]], P[tri[0]]))
-                a2 = _fdot(nrm, nrm)
+                a2 = _area2(P, tri)
                 if a2 > 0 and (best is None or a2 > best):
                     best, refs = a2, list(tri)
             if refs is None:  # collinear taut anchors: G off their line is the third reference point, as for m = 2
                 for pair in itertools.combinations(taut, 2):
-                    nrm = _fcross(_fsub(P[pair[1]], P[pair[0]]), _fsub(P[self.G_id], P[pair[0]]))
-                    a2 = _fdot(nrm, nrm)
+                    a2 = _area2(P, (*pair, self.G_id))
                     if a2 > 0 and (best is None or a2 > best):
                         best, refs = a2, [*pair, self.G_id]
             if refs is None:
@@ -218,6 +222,11 @@ class Model:
                                     _fsub(P[quad[3]], P[quad[0]])))
                     if vol > 0 and (best4 is None or vol > best4):
                         best4, refs = vol, list(quad)
+                # the largest triangle of the four first (as for l = 3): the bisected points (below), which fix
+                # the fourth best.  Measured (thirty-fourth session, seed 000 Test 3): with the combinations' order
+                # 2.33 million boxes, largest triangle first 2.10 million (taut set {1, 3, 4, 5}: 192,000 -> 94,000)
+                first = max(itertools.combinations(refs, 3), key=lambda tri: _area2(P, tri))
+                refs = list(first) + [k for k in refs if k not in first]
         self.l = len(refs)
         self.refs_plat = refs  # platform-point ids of the reference points
         self.chirality = None
