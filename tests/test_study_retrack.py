@@ -454,15 +454,38 @@ def test_last_failed_path_rescued_in_double_double(monkeypatch):
     re-run) and in the taut system; left alone it is tracked once more in double-double where double fails (the
     rescue of --mpmath-retry, automatic for at most AUTO_RESCUE_MAX_FAILED failed paths; without the route from
     another generic instance, which settles it first) and the subproblem is
-    complete, every endpoint certified.  Without the automatic rescue the path stays failed."""
+    complete, every endpoint certified.  Without the automatic rescue the path stays failed.  (With the gamma re-run,
+    the other route's roots settle it first: tests/test_dgp_large_forces.py, the routes' rescues.)"""
     import cdpr_algebra.dgp.solve as S
     from cdpr_algebra.model.robot import load_robot
 
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
     monkeypatch.setattr(S, "OTHER_START", False)  # the route from another generic instance settles it first
+    monkeypatch.setattr(S, "RERUN_MAX_FAILED", 0)  # and so do the roots of the gamma re-run's route
     sub, _ = S.solve_taut_set(robot, robot.lengths, (1, 2, 5, 6), certify=False)
     assert sub.complete and sub.outcomes["failed"] == 0 and sub.retried.get("study_extended") == 1
     assert sub.certified == sub.outcomes["regular"] == 216
     monkeypatch.setattr(S, "AUTO_RESCUE_MAX_FAILED", 0)
     sub, _ = S.solve_taut_set(robot, robot.lengths, (1, 2, 5, 6), certify=False)
     assert not sub.complete and sub.outcomes["failed"] == 1
+
+
+def test_a_conjugate_pair_of_huge_roots_is_reached_by_both_routes_rescues():
+    """A random 5-cable robot built around an all-taut equilibrium (tests/equilibria.py, seed 303), taut set
+    {2, 3, 4}: 154 roots in double precision; the other two, a complex conjugate pair with |x| ~ 8.5e6 (condition
+    ~2e13 in Study parameters, ~1e16 in (p, u, v, w, lam)), are the limits of paths that fail in both routes (straight
+    and gamma).  The double-double rescue of each route reaches one of them (Newton quadratic to full precision in
+    Study parameters, N clearly nonzero: regular, beyond the endgame's singular_condition): the kept route's settles
+    its own path, the other route's root settles the last one.  Complete: 156 distinct regular roots, every one
+    proven (the pair in ball arithmetic), and the pair is a conjugate pair of huge roots.  Before: 2 failed paths."""
+    from equilibria import all_taut_equilibrium_robot
+
+    robot, _, _, _ = all_taut_equilibrium_robot(5, 303)
+    sub, Z, proven = S.taut_set_roots(robot, robot.lengths, (1, 2, 3))
+    assert sub.complete and sub.paths == 156 and sub.outcomes["regular"] == 156 and sub.outcomes["failed"] == 0
+    assert sub.certified == 156 and np.all(proven) and len(Z) == 156
+    assert sub.retried.get("study_extended") == 1 and sub.retried.get("unheld_root") == 1
+    huge = Z[np.abs(Z).max(axis=1) > 1e6]
+    assert len(huge) == 2 and np.abs(Z).max() < 1e7
+    scale = np.abs(huge).max()
+    assert np.max(np.abs(huge[0] - np.conj(huge[1]))) <= 1e-8 * scale

@@ -412,6 +412,12 @@ def _solve_one_cable(robot, rho, i):
 MP_RETRY_PATHS = 4  # with retry_mpmath: failed paths per subproblem run tracked again in double-double (Study)
 RERUN_MAX_FAILED = 4  # re-run a subproblem with a new gamma only when at most this many of its paths failed
 AUTO_RESCUE_MAX_FAILED = 2  # ... then the extended-precision rescue of --mpmath-retry for at most this many left
+# ... and, where some are still left, the other route's failed paths rescued the same way, whose roots settle them.
+# No condition limit on those roots: the rescue kept them in Study parameters (Newton quadratic to full precision, N
+# clearly nonzero), where they are far better conditioned than in (p, u, v, w, lam); the endpoint certificates prove
+# them or not.  Measured (thirty-fourth session): a random 5-cable robot's {2, 3, 4} has a conjugate pair of roots
+# with |x| = 8.5e6 (condition 2e13 in Study parameters, 1.3e16 here), each route reached one of them
+RESCUED_MAX_CONDITION = np.inf
 OTHER_START = True  # ... after the gamma re-run, a run from another generic instance settles failed paths too
 # predictor tolerance of the tracker (engine default 1e-5; the corrector still ends at 1e-8, with a third Newton
 # update where two do not reach it).  Measured on seed 000 Tests 2 and 3 (tenth session): 1e-4 -> 3e-4 takes
@@ -478,13 +484,13 @@ def _track(m, target, seed, gamma, options=None, start=None):
     return res, sum(1 for p in res.track.paths if p.status in FAILURES)
 
 
-def _settle_on_unheld_roots(m, target, res, options, estimates=()):
+def _settle_on_unheld_roots(m, target, res, options, estimates=(), max_condition: float | None = None):
     """:func:`.unheld_roots.settle_on_unheld_roots` for the run ``res`` of the taut system of m cables to ``target``
     (``estimates``: more points to start Newton's method from): (result, failed paths left)."""
     from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
 
     return settle_on_unheld_roots(ParameterHomotopy(fast_family(m), _generic(m)[0], target), res, options,
-                                  RESIDUAL_TOL, estimates)
+                                  RESIDUAL_TOL, estimates, max_condition)
 
 
 def solve_taut_set(robot, rho, cables, seed: int = 0, certify: bool = True, options=None, exclude: bool = True):
@@ -618,12 +624,12 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     # Measured (ninth session, seed 000): re-run at up to 5 % failed paths, Tests 2 and 3 re-ran 37 subproblems
     # (a fifth of their tracking steps) and 5 came out complete, all of them with 1 or 2 failed paths at first
     # (5 of 18 such); none of the 19 with 3 to 10 failures did.
-    route = (seed, False)
+    route, other, other_route = (seed, False), None, None
     if 0 < failed <= RERUN_MAX_FAILED:
         res2, failed2 = _track(m, target, seed + 7919, gamma=True, options=options, start=start)
-        other = res
+        other, other_route = res2, (seed + 7919, True)
         if failed2 < failed:
-            res, failed, other, route = res2, failed2, res, (seed + 7919, True)
+            res, failed, other, route, other_route = res2, failed2, res, other_route, route
         if failed:  # the other run's regular roots that no path of this one holds settle its failed paths
             res, failed = _settle_on_other_runs_roots(m, target, res, other, options)
         other_start = other_generic_instance(lambda p, s: _track(m, p, s, True, start=start)[0],
@@ -633,6 +639,9 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
                 m, target, res, _track(m, target, seed, True, options, other_start)[0], options)
     if 0 < failed <= AUTO_RESCUE_MAX_FAILED and not (options is not None and options.retry_mpmath):
         res, failed = _rescue_last_failed_paths(m, target, res, *route, options, start)
+        if failed and other is not None:  # the other route's failed paths rescued too: their roots settle these
+            other, _ = _rescue_last_failed_paths(m, target, other, *other_route, options, start)
+            res, failed = _settle_on_other_runs_roots(m, target, res, other, options, RESCUED_MAX_CONDITION)
     X = np.array([s.x for s in res.solutions]).reshape(-1, fam.n)
     finite = len(X)
     real = np.all(np.abs(X.imag) <= REAL_TOL * (1 + np.abs(X.real)), axis=1) if finite else np.zeros(0, bool)
@@ -723,7 +732,7 @@ def _rescue_last_failed_paths(m, target, res, seed, gamma, options, start=None):
     return res, sum(1 for p in res.track.paths if p.status in FAILURES)
 
 
-def _settle_on_other_runs_roots(m, target, res, other, options):
+def _settle_on_other_runs_roots(m, target, res, other, options, max_condition: float | None = None):
     """(``res`` with its failed paths settled on the regular roots of the ``other`` run (another route to the same
     target) that no path of ``res`` holds, failed paths left): :func:`.unheld_roots.settle_on_unheld_roots` with those
     roots as the estimates (each tested again by Newton's method at the target).  Why this accounts for paths: a
@@ -733,7 +742,7 @@ def _settle_on_other_runs_roots(m, target, res, other, options):
     to phase-1 crawls near Study's exceptional set in each run, not the same paths in both."""
     options = default_options() if options is None else options
     return _settle_on_unheld_roots(m, target, res, options,
-                                   [p.endpoint for p in other.track.paths if p.status == SUCCESS])
+                                   [p.endpoint for p in other.track.paths if p.status == SUCCESS], max_condition)
 
 
 def _with_endpoint_certificates(robot, rho, items, proofs: dict | None = None) -> list:

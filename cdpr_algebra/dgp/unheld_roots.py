@@ -62,27 +62,29 @@ def residual_bound(X, residual_tol) -> np.ndarray:
         return np.maximum(residual_tol, ROUNDING_RESIDUAL * (1 + np.max(np.abs(X), axis=1)))
 
 
-def newton_roots(homotopy, X, residual_tol):
+def newton_roots(homotopy, X, residual_tol, max_condition: float | None = None):
     """Rows X refined at t = 0 (at most ``NEWTON_STEPS`` iterations): (points, their (residual, condition, last
     update), mask of Newton-quadratic finite roots with a last update <= ``SETTLED``, condition number <=
-    ``MAX_CONDITION`` and residual within :func:`residual_bound` of tol)."""
+    ``max_condition`` (default ``MAX_CONDITION``) and residual within :func:`residual_bound` of tol)."""
     X = np.asarray(X, dtype=complex).reshape(-1, homotopy.n)
     if not len(X):
         return X, [], np.zeros(0, dtype=bool)
     with np.errstate(all="ignore"):
         x, upd, res, cond, quad = refine(homotopy, X, 0.0, max_iter=NEWTON_STEPS)
-    good = quad & (upd <= SETTLED) & (cond <= MAX_CONDITION) & (res <= residual_bound(x, residual_tol))
+    limit = MAX_CONDITION if max_condition is None else max_condition
+    good = quad & (upd <= SETTLED) & (cond <= limit) & (res <= residual_bound(x, residual_tol))
     good &= np.all(np.isfinite(x), axis=1)
     return x, list(zip(res, cond, upd)), good
 
 
-def settle_on_unheld_roots(homotopy, result, options, residual_tol: float, more_estimates=()):
+def settle_on_unheld_roots(homotopy, result, options, residual_tol: float, more_estimates=(),
+                           max_condition: float | None = None):
     """(``result`` with its failed paths settled on distinct regular roots that no other path holds (module doc), the
     number of failed paths left).  ``homotopy``: the parameter homotopy whose target is the system at t = 0 (its
     ``n`` unknowns; endpoints in its coordinates); ``options``: the run's SolveOptions (``endgame.cluster_tol``
     decides coincidence, ``duplicate_tol`` the grouping); ``residual_tol``: the largest relative residual of a
     kept root; ``more_estimates``: other points to start Newton's method from (e.g. roots found in other
-    coordinates, :func:`.study_retrack.study_roots`), kept by the same tests."""
+    coordinates, :func:`.study_retrack.study_roots`), kept by the same tests, with ``max_condition`` for them."""
     paths = list(result.track.paths)
     failed = [i for i, p in enumerate(paths) if p.status in FAILURES]
     if not failed:
@@ -103,7 +105,8 @@ def settle_on_unheld_roots(homotopy, result, options, residual_tol: float, more_
             keep(x, inf)
     pairs = [2 * paths[i].endpoint - x for i, x in roots.items()
              if paths[i].status == ENDGAME_FAILED and paths[i].winding_number == 2]
-    Y, info, good = newton_roots(homotopy, pairs + [np.asarray(x, dtype=complex) for x in more_estimates], residual_tol)
+    Y, info, good = newton_roots(homotopy, pairs + [np.asarray(x, dtype=complex) for x in more_estimates], residual_tol,
+                                 max_condition)
     for y, inf, g in zip(Y, info, good):
         if g:
             keep(y, inf)
