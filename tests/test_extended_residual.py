@@ -179,9 +179,11 @@ def test_extended_precision_completes_marionet_subproblems(cables, monkeypatch):
     monkeypatch.setattr(D, "STUDY_RETRACK", False)
     monkeypatch.setattr(D, "OTHER_START", False)  # a run from another generic instance settles the plain run's failures
     rerun = D.RERUN_MAX_FAILED
-    monkeypatch.setattr(D, "RERUN_MAX_FAILED", 0)  # nor the gamma re-run, whose roots settle the plain run's too
+    monkeypatch.setattr(D, "RERUN_MAX_FAILED", 0)  # nor the gamma re-run, whose roots settle the plain run's too,
+    monkeypatch.setattr(D, "CONJUGATE_ROOTS", False)  # nor the conjugates of its roots
     plain, _ = solve_taut_set(robot, robot.lengths, cables, options=default_options())
     monkeypatch.setattr(D, "RERUN_MAX_FAILED", rerun)
+    monkeypatch.setattr(D, "CONJUGATE_ROOTS", True)
     ext, _ = solve_taut_set(robot, robot.lengths, cables, options=default_options(extended=True))
     assert not plain.complete and plain.outcomes["failed"] > 0
     assert ext.complete and ext.outcomes["failed"] == 0 and sum(ext.outcomes.values()) == ext.paths

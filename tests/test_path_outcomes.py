@@ -254,8 +254,8 @@ def test_forced_failures_make_the_dgp_incomplete_and_the_cli_exit_3(test1, tmp_p
 def test_detours_complete_a_marionet_subproblem(monkeypatch):
     """Seed 000 Test 3 (MARIONET-VR), taut set {2, 3, 6}: 4 of its 156 paths fail before the endgame zone; with the
     detours (the DGP's default) every path ends regular and every endpoint is certified, so the subproblem is
-    complete; without them (nor the re-run with a new gamma and the double-double rescue of the last failed paths,
-    which complete it too) it is not."""
+    complete; without them (nor the re-run with a new gamma, the double-double rescue of the last failed paths and
+    the conjugates of the roots found, which complete it too) it is not."""
     import cdpr_algebra.dgp.solve as S
     from cdpr_algebra.dgp.solve import default_options, solve_taut_set
     from cdpr_algebra.model.robot import load_robot
@@ -266,6 +266,7 @@ def test_detours_complete_a_marionet_subproblem(monkeypatch):
     assert with_detours.complete and with_detours.certified == with_detours.paths == 156
     monkeypatch.setattr(S, "AUTO_RESCUE_MAX_FAILED", 0)
     monkeypatch.setattr(S, "RERUN_MAX_FAILED", 0)
+    monkeypatch.setattr(S, "CONJUGATE_ROOTS", False)  # nor the conjugates of the roots found
     without, _ = solve_taut_set(robot, robot.lengths, (1, 2, 5), certify=False,
                                 options=replace(default_options(), detour_retry=False))
     assert not without.complete and without.outcomes["failed"] > 0

@@ -255,3 +255,35 @@ def test_a_root_of_size_1e8_is_kept_and_certified():
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
     sub, _ = S.solve_taut_set(robot, robot.lengths, (1, 3, 5, 7), certify=False)
     assert sub.complete and sub.outcomes["failed"] == 0 and sub.certified == 216
+
+
+def test_conjugates_of_regular_roots_settle_failed_paths():
+    """settle_on_conjugates (a real target): a failed path is settled on the conjugate of a non-real regular endpoint
+    that no path holds, with that endpoint's residual and condition; a real endpoint, or one whose conjugate is held,
+    settles nothing; two failed paths and one such conjugate leave one failed; the outcomes still add up."""
+    from cdpr_algebra.dgp.solve import default_options
+    from cdpr_algebra.dgp.unheld_roots import CONJUGATE, settle_on_conjugates
+    from cdpr_algebra.homotopy.results import SUCCESS, PathResult, SolveResult, TrackResult
+
+    opts = default_options()
+    z = np.array([1.0 + 2.0j, -3.0 + 0.5j, 4.0 - 1.0j])
+    r = np.array([0.5, 1.5, -2.0]) + 0j
+    w = np.array([2.0 + 1.0j, 1.0 - 1.0j, 0.25 + 3.0j])
+
+    def run(*paths):
+        track = TrackResult(paths=tuple(PathResult(i, st, x, 0j if st == SUCCESS else 0.3 + 0j, 1e-15, 1e12, 1e-16, 50)
+                                        for i, (st, x) in enumerate(paths)), seconds=0.0, seed=0)
+        return SolveResult(solutions=(), track=track)
+
+    failed = np.zeros(3, dtype=complex)
+    res, left = settle_on_conjugates(run((SUCCESS, z), (SUCCESS, r), (SUCCESS, w), (SUCCESS, np.conj(w)),
+                                         (STEP_TOO_SMALL, failed)), opts)
+    assert left == 0
+    p = res.track.paths[4]
+    assert p.status == SUCCESS and p.retried == CONJUGATE and np.array_equal(p.endpoint, np.conj(z))
+    assert p.condition == 1e12 and p.residual == 1e-15 and outcome_counts(res.track.paths)["regular"] == 5
+    res, left = settle_on_conjugates(run((SUCCESS, z), (STEP_TOO_SMALL, failed), (STEP_TOO_SMALL, failed)), opts)
+    assert left == 1 and sum(q.retried == CONJUGATE for q in res.track.paths) == 1
+    res, left = settle_on_conjugates(run((SUCCESS, r), (SUCCESS, w), (SUCCESS, np.conj(w)),
+                                         (STEP_TOO_SMALL, failed)), opts)
+    assert left == 1 and res.track.paths[3].status == STEP_TOO_SMALL

@@ -130,7 +130,7 @@ from .other_start import other_generic_instance
 from .collinear_anchors import collinear_start, fixed_parameters, line_frame
 from .tension_infinity import tension_infinity_undecided
 from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, study_roots, track_study_first
-from .unheld_roots import settle_on_unheld_roots
+from .unheld_roots import settle_on_conjugates, settle_on_unheld_roots
 from .taut_system import FastTautSystem, fast_family
 from .table import dgp_table, incompleteness, summary_line  # noqa: F401 (the module's public names)
 from cdpr_algebra.homotopy.results import FAILURES, OUTCOMES, SUCCESS, outcome_counts
@@ -418,6 +418,11 @@ AUTO_RESCUE_MAX_FAILED = 2  # ... then the extended-precision rescue of --mpmath
 # them or not.  Measured (thirty-fourth session): a random 5-cable robot's {2, 3, 4} has a conjugate pair of roots
 # with |x| = 8.5e6 (condition 2e13 in Study parameters, 1.3e16 here), each route reached one of them
 RESCUED_MAX_CONDITION = np.inf
+# last, a real target's failed paths settled on the conjugates of its non-real regular endpoints that no path holds
+# (dgp.unheld_roots.settle_on_conjugates).  Measured (thirty-fourth session): a random 6-cable robot's {1, 2, 3, 6}
+# and a random 3-cable robot's {1, 2, 3} (tests/test_dgp_round_trips.py, seed 3), one root of a huge conjugate pair
+# reached in double-double, the other by no route, complete with it
+CONJUGATE_ROOTS = True
 OTHER_START = True  # ... after the gamma re-run, a run from another generic instance settles failed paths too
 # predictor tolerance of the tracker (engine default 1e-5; the corrector still ends at 1e-8, with a third Newton
 # update where two do not reach it).  Measured on seed 000 Tests 2 and 3 (tenth session): 1e-4 -> 3e-4 takes
@@ -642,6 +647,8 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
         if failed and other is not None:  # the other route's failed paths rescued too: their roots settle these
             other, _ = _rescue_last_failed_paths(m, target, other, *other_route, options, start)
             res, failed = _settle_on_other_runs_roots(m, target, res, other, options, RESCUED_MAX_CONDITION)
+    if failed and CONJUGATE_ROOTS and np.all(np.imag(target) == 0):  # real target: conjugates of roots are roots
+        res, failed = settle_on_conjugates(res, default_options() if options is None else options)
     X = np.array([s.x for s in res.solutions]).reshape(-1, fam.n)
     finite = len(X)
     real = np.all(np.abs(X.imag) <= REAL_TOL * (1 + np.abs(X.real)), axis=1) if finite else np.zeros(0, bool)
