@@ -92,12 +92,10 @@ def settle_on_unheld_roots(homotopy, result, options, residual_tol: float, more_
     decides coincidence, ``duplicate_tol`` the grouping); ``residual_tol``: the largest relative residual of a
     kept root; ``more_estimates``: other points to start Newton's method from (e.g. roots found in other
     coordinates, :func:`.study_retrack.study_roots`), kept by the same tests, with ``max_condition`` for them."""
-    paths = list(result.track.paths)
-    failed = [i for i, p in enumerate(paths) if p.status in FAILURES]
+    paths, failed, held = _failed_and_held(result)
     if not failed:
         return result, 0
     tol = options.endgame.cluster_tol
-    held = [p.endpoint for p in paths if p.status in (SUCCESS, SINGULAR)]
     found = []  # (root, (residual, condition, last update))
 
     def keep(x, info):
@@ -117,38 +115,44 @@ def settle_on_unheld_roots(homotopy, result, options, residual_tol: float, more_
     for y, inf, g in zip(Y, info, good):
         if g:
             keep(y, inf)
-    if not found:
-        return result, len(failed)
-    for i, (x, (res, cond, upd)) in zip(failed, found):
-        paths[i] = replace(paths[i], status=SUCCESS, endpoint=x, t=0j, residual=float(res), condition=float(cond),
-                           accuracy=float(upd), winding_number=1, retried=UNHELD_ROOT)
-    track = replace(result.track, paths=tuple(paths))
-    left = len(failed) - min(len(found), len(failed))
-    return replace(result, track=track, solutions=group_solutions(track, options.duplicate_tol, tol)), left
+    return _settled(result, paths, failed, [dict(endpoint=x, residual=float(res), condition=float(cond),
+                                                 accuracy=float(upd), retried=UNHELD_ROOT)
+                                            for x, (res, cond, upd) in found], options)
 
 
 def settle_on_conjugates(result, options):
     """(``result``, a run to a target with real coefficients, with its failed paths settled on the conjugates of its
     non-real regular endpoints that no path holds, the number of failed paths left): module doc.  Each kept
     conjugate takes the residual, condition and accuracy of the endpoint it mirrors."""
-    paths = list(result.track.paths)
-    failed = [i for i, p in enumerate(paths) if p.status in FAILURES]
+    paths, failed, held = _failed_and_held(result)
     if not failed:
         return result, 0
     tol = options.endgame.cluster_tol
-    held = [p.endpoint for p in paths if p.status in (SUCCESS, SINGULAR)]
     found = []
     for p in paths:
-        if p.status != SUCCESS or not np.any(np.imag(p.endpoint) != 0):
-            continue
         z = np.conj(p.endpoint)
-        if not coincides_with_any(held, z, tol) and not coincides_with_any([q.endpoint for q in found], z, tol):
-            found.append(replace(p, endpoint=z))
+        if p.status == SUCCESS and np.any(np.imag(p.endpoint) != 0) and not coincides_with_any(held, z, tol) \
+                and not coincides_with_any([f["endpoint"] for f in found], z, tol):
+            found.append(dict(endpoint=z, residual=p.residual, condition=p.condition, accuracy=p.accuracy,
+                              retried=CONJUGATE))
+    return _settled(result, paths, failed, found, options)
+
+
+def _failed_and_held(result):
+    """(the run's paths (a list), the indices of its failed ones, the endpoints that settled paths hold)."""
+    paths = list(result.track.paths)
+    return (paths, [i for i, p in enumerate(paths) if p.status in FAILURES],
+            [p.endpoint for p in paths if p.status in (SUCCESS, SINGULAR)])
+
+
+def _settled(result, paths, failed, found, options):
+    """(``result`` with its failed paths ``failed`` given, in order, the regular outcomes ``found`` (PathResult
+    fields: endpoint, residual, condition, accuracy, retried), the number of failed paths left)."""
     if not found:
         return result, len(failed)
-    for i, q in zip(failed, found):
-        paths[i] = replace(paths[i], status=SUCCESS, endpoint=q.endpoint, t=0j, residual=q.residual,
-                           condition=q.condition, accuracy=q.accuracy, winding_number=1, retried=CONJUGATE)
+    for i, fields in zip(failed, found):
+        paths[i] = replace(paths[i], status=SUCCESS, t=0j, winding_number=1, **fields)
     track = replace(result.track, paths=tuple(paths))
     left = len(failed) - min(len(found), len(failed))
-    return replace(result, track=track, solutions=group_solutions(track, options.duplicate_tol, tol)), left
+    return replace(result, track=track, solutions=group_solutions(track, options.duplicate_tol,
+                                                                  options.endgame.cluster_tol)), left
