@@ -252,14 +252,14 @@ def test_limit_of_one_sheet_needs_one_sheet_a_solution_and_a_pose():
     assert not _limit_of_one_sheet(path(endpoint=np.concatenate([iso, np.ones(6)]), accuracy=1e-8), o)
 
 
-def test_ill_conditioned_roots_need_full_precision_a_bounded_condition_and_a_pose():
+def testill_conditioned_roots_need_full_precision_a_bounded_condition_and_a_pose():
     """``EndgameOptions.ill_conditioned_limit``: a fast-finish endpoint above ``singular_condition`` ends regular only
     with a condition number within the limit, a last Newton update at ``refine_tol`` and, on a system that names
     its coordinate at infinity (Study's N / |e|^2), that coordinate above 1e3 times the update."""
     from types import SimpleNamespace
 
     from cdpr_algebra.dgp.study_retrack import FastStudySystem
-    from cdpr_algebra.homotopy.endgame import EndgameOptions, _ill_conditioned_roots
+    from cdpr_algebra.homotopy.endgame import EndgameOptions, ill_conditioned_roots
 
     o = replace(EndgameOptions(), ill_conditioned_limit=1e13)
     pose = np.concatenate([[1.0, 0.5j, 0.3, 0.2], np.ones(6)])  # N / |e|^2 ~ 0.8
@@ -268,11 +268,11 @@ def test_ill_conditioned_roots_need_full_precision_a_bounded_condition_and_a_pos
     upd = np.array([1e-15, 1e-15, 1e-12, 1e-15, 1e-15, 1e-15])
     cond = np.array([1e12, 1e14, 1e12, 1e9, 1e12, 1e12])
     hom = SimpleNamespace(system=SimpleNamespace(infinity_coordinate=FastStudySystem.infinity_coordinate))
-    got = _ill_conditioned_roots(hom, X, upd, cond, o)
+    got = ill_conditioned_roots(hom, X, upd, cond, o)
     # regular; cond over the limit; update above refine_tol; cond below singular_condition (the usual test's);
     # N vanishing to 1e3 x its update; and without a coordinate at infinity the same pose point passes
     assert got.tolist() == [True, False, False, False, False, True]
-    assert _ill_conditioned_roots(SimpleNamespace(), X, upd, cond, o).tolist() == [True, False, False, False, True,
+    assert ill_conditioned_roots(SimpleNamespace(), X, upd, cond, o).tolist() == [True, False, False, False, True,
                                                                                     True]
 
 

@@ -346,10 +346,10 @@ def _rescue_in_extended_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: 
     on to t = 0 (no endgame: a path that does not reach a regular point there stays failed).  Returns {path: (Study
     endpoint, steps)} for the paths that reach a point where Newton's method in the Study system converges
     quadratically with a condition number at most the endgame's ``singular_condition``, or beyond it with its last
-    update at ``refine_tol`` and N = e . e clearly nonzero (:func:`cdpr_algebra.homotopy.endgame.off_infinity`; no upper
-    limit: measured, thirty-fourth session, a random 5-cable robot's conjugate pair of roots with |x| = 8.5e6 and
-    condition 2e13 here, which the endpoint certificates prove in ball arithmetic)."""
-    from cdpr_algebra.homotopy.endgame import off_infinity
+    update at ``refine_tol`` and N = e . e clearly nonzero (:func:`cdpr_algebra.homotopy.endgame.ill_conditioned_roots`;
+    no upper limit: measured, thirty-fourth session, a random 5-cable robot's conjugate pair of roots with
+    |x| = 8.5e6 and condition 2e13 here, which the endpoint certificates prove in ball arithmetic)."""
+    from cdpr_algebra.homotopy.endgame import ill_conditioned_roots
     from cdpr_algebra.homotopy.refinement import refine
     from cdpr_algebra.homotopy.hybrid_tracker import hybrid_track
 
@@ -358,6 +358,7 @@ def _rescue_in_extended_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: 
         return {}
     hom, precise = _study_homotopy_and_twin(m, P1, P0, seed, gamma)
     te, tr = opts.endgame.endgame_start, opts.tracker
+    unlimited = replace(opts.endgame, ill_conditioned_limit=np.inf)
     out = {}
     for j in bad:
         y, steps, spent, status = Y1[j], 0, 0, SUCCESS
@@ -371,11 +372,11 @@ def _rescue_in_extended_precision(m: int, spaths, Y1, P1, P0, seed: int, gamma: 
                 break
         if status != SUCCESS:
             continue
-        # a regular root: Newton quadratic and, beyond the endgame's singular_condition, converged to refine_tol with
-        # N clearly nonzero (a pose; the fast finish's rule for ill-conditioned roots, without its upper limit)
+        # a regular root: Newton quadratic and, beyond the endgame's singular_condition, the fast finish's rule for
+        # ill-conditioned roots (full precision, N clearly nonzero) without its upper limit
         yr, upd, _, cond, quad = refine(hom, y[None], 0.0)
-        if quad[0] and (cond[0] <= opts.endgame.singular_condition or (
-                upd[0] <= opts.endgame.refine_tol and off_infinity(FastStudySystem.infinity_coordinate, yr, upd)[0])):
+        if quad[0] and (cond[0] <= opts.endgame.singular_condition
+                        or ill_conditioned_roots(hom, yr, upd, cond, unlimited)[0]):
             out[j] = (yr[0], steps)
     return out
 

@@ -583,7 +583,7 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
     xr, upd, res, cond, quad = refine(homotopy, seg.x[reached], 0.0, tol=eo.refine_tol)
     good = (quad | (upd <= eo.settled_update)) & (cond <= eo.singular_condition)
     if eo.ill_conditioned_limit > eo.singular_condition:
-        good |= _ill_conditioned_roots(homotopy, xr, upd, cond, eo)
+        good |= ill_conditioned_roots(homotopy, xr, upd, cond, eo)
     gi = np.flatnonzero(reached)[good]
     out_x[gi] = xr[good]
     status[gi] = SUCCESS
@@ -667,7 +667,7 @@ def _finish(homotopy, x_te, opts: SolveOptions, tr: TrackerOptions, h=None):
     return out_x, status, wind, acc, tfin, steps, order, (prev, prev_t)
 
 
-def _ill_conditioned_roots(homotopy, X, upd, cond, eo: EndgameOptions) -> np.ndarray:
+def ill_conditioned_roots(homotopy, X, upd, cond, eo: EndgameOptions) -> np.ndarray:
     """The points X (Newton-refined fast-finish endpoints, last updates ``upd``, condition numbers ``cond``) that
     ``eo.ill_conditioned_limit`` lets end regular: singular_condition < cond <= that limit, the last update at
     ``refine_tol`` (Newton converged to full precision, which it does not near a singular root) and, where the
