@@ -155,6 +155,26 @@ def test_trace_test_small_family_passes_with_the_full_set(quadrics):
     assert tr.status == "failed"
 
 
+def test_a_trace_that_does_not_separate_is_undecided(quadrics):
+    """A trace below the tolerance passes only when a single missing point would show clearly above it
+    (``separation``): asked for more separation than the measured trace gives, the same test is undecided, with
+    the reason, never passed; polishing every point in arbitrary precision lowers the trace, not the signal."""
+    S, p, X = quadrics
+    res = verify_solution_completeness(S, p, X, seed=3)
+    tr = res.trace
+    assert tr.status == "passed" and tr.separation >= tr.required_separation == 100
+    assert tr.separation == pytest.approx(tr.detection / tr.relative)
+    strict = TraceTestOptions(separation=10 * tr.separation)
+    weak = compute_trace(S, p, res.q0, res.l, X, res.W10, strict, seed=3, gamma=tr.gamma)
+    assert weak.status == "undecided" and not weak.passed and "does not separate" in weak.reason
+    assert weak.relative == pytest.approx(tr.relative, rel=1e-6) and weak.to_dict()["reason"] == weak.reason
+    polished = compute_trace(S, p, res.q0, res.l, X, res.W10, TraceTestOptions(polish_condition=0.0), seed=3,
+                             gamma=tr.gamma)
+    assert polished.outcomes[-1]["polished"]["start"] == len(X) + len(res.W10)  # every point refined
+    assert polished.status == "passed" and polished.detection == pytest.approx(tr.detection, rel=1e-3)
+    assert polished.relative <= max(tr.relative, 1e-14)
+
+
 def test_trace_test_lost_paths_are_undecided(quadrics):
     """Pencil paths that cannot be tracked (a step budget of 1) make the test undecided, never passed."""
     S, p, X = quadrics

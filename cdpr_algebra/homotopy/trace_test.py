@@ -28,7 +28,9 @@ Every path's outcome is recorded (``outcomes``: counts of the engine's statuses 
 does not end at a regular, distinct point at tau = +-eps gamma makes the attempt lost: the pencil is tried
 again with another gamma (``attempts``); if every attempt loses a path the verdict is ``undecided``, never
 ``passed``.  ``detection`` gives the smallest second difference of a single point (relative): the trace a set
-with that one point missing would have, a measure of how clearly the test separates complete from incomplete.
+with that one point missing would have, a measure of how clearly the test separates complete from incomplete.  A
+trace passes only when it is below the tolerance AND ``separation`` (100) times below ``detection``: a trace that
+vanishes no more clearly than a missing point's signal could not have failed, and is ``undecided``.
 
 Numerics.  Points are compared by a duplicate test scaled by their condition number (:func:`distinct_points`):
 monodromy's fixed relative 1e-8 counts an ill-conditioned point once per loop that finds it again.  Before the
@@ -91,7 +93,11 @@ class TraceTestOptions:
       ``max_confirm_tries`` [8] rounds);
     * ``max_loops`` [200]: cap of every monodromy run;
     * ``polish_condition`` [1e6]: points of S, S+ and S- with a larger condition number are refined in arbitrary
-      precision before the sums (:func:`polish`; 0 or None: never);
+      precision before the sums (:func:`polish`; 0: every point, the trace's rounding noise then ~1e-15; None:
+      never);
+    * ``separation`` [100]: the trace passes only when a single missing point would change it by at least this
+      many times the trace measured (``detection >= separation * relative``); a trace below ``tol`` that
+      separates less is ``undecided`` (it would not notice a missing point);
     * ``solve`` [SolveOptions(retry_mpmath=False)]: tracking options of the monodromy loops and moves;
     * ``pencil`` [SolveOptions()]: tracking options of the pencil paths (arbitrary-precision retries included);
     * ``chart_retrack`` [20131]: seed of a random chart of projective space in which the pencil paths lost in
@@ -110,7 +116,8 @@ class TraceTestOptions:
     confirmations: int = 3
     max_confirm_tries: int = 8
     max_loops: int = 200
-    polish_condition: float = 1e6
+    polish_condition: float | None = 1e6
+    separation: float = 100.0
     solve: SolveOptions = field(default_factory=lambda: SolveOptions(retry_mpmath=False))
     pencil: SolveOptions = field(default_factory=SolveOptions)
     chart_retrack: int | None = 20131
@@ -130,9 +137,11 @@ class TraceResult:
     * ``scale``: max over the coordinates of max(|sum(S+) - sum(S)|, |sum(S) - sum(S-)|, 1), the size of the
       first differences (HomotopyContinuation.jl's normalization, with a common scale);
     * ``relative``: max_k |trace_k| / scale; ``passed`` when every path ended regular and distinct and
-      ``relative <= tol``; ``status``: "passed", "failed" (trace not zero) or "undecided" (a path lost);
+      ``relative <= tol`` and ``detection >= required_separation * relative``; ``status``: "passed", "failed"
+      (trace not zero) or "undecided" (a path lost, or a trace that does not separate: ``reason``);
     * ``detection``: min over the points of S of max_k |y_k(+) - 2 y_k(0) + y_k(-)| / scale: the relative trace
-      of S with that single point removed (``detection_median``: the median);
+      of S with that single point removed (``detection_median``: the median); ``separation`` = detection /
+      relative, how many times the measured trace a single missing point would add;
     * ``outcomes``: per attempt and direction, counts of path statuses (plus ``duplicate`` endpoints);
     """
 
@@ -150,17 +159,25 @@ class TraceResult:
     seconds: float
     endpoints_plus: np.ndarray | None = None
     endpoints_minus: np.ndarray | None = None
+    required_separation: float = 100.0
+    reason: str = ""
 
     @property
     def passed(self) -> bool:
         return self.status == "passed"
+
+    @property
+    def separation(self) -> float:
+        return float(self.detection / self.relative) if self.relative > 0 else float("inf")
 
     def to_dict(self) -> dict:
         return {"status": self.status, "trace": {"re": np.real(self.trace).tolist(), "im": np.imag(self.trace).tolist()},
                 "trace_norm": float(np.max(np.abs(self.trace))) if self.trace.size else None,
                 "relative": self.relative, "scale": self.scale, "tol": self.tol, "detection": self.detection,
                 "detection_median": self.detection_median, "gamma": {"re": self.gamma.real, "im": self.gamma.imag},
-                "eps": self.eps, "points": self.points, "outcomes": self.outcomes, "seconds": self.seconds}
+                "eps": self.eps, "points": self.points, "outcomes": self.outcomes, "seconds": self.seconds,
+                "separation": self.separation if np.isfinite(self.relative) else None,
+                "required_separation": self.required_separation, "reason": self.reason}
 
 
 @dataclass(frozen=True)
@@ -611,7 +628,7 @@ def compute_trace(system, p0, q0, l, W01, W10, options: TraceTestOptions | None 
         Sp, Sm = ends
         # ill-conditioned points refined in arbitrary precision (their double-precision error would be noise)
         polished = {}
-        if o.polish_condition:
+        if o.polish_condition is not None:
             S, polished["start"], c0 = polish(pencil, [0.0], S, o.polish_condition)
             Sp, polished["plus"], c1 = polish(pencil, [o.eps * g], Sp, o.polish_condition)
             Sm, polished["minus"], c2 = polish(pencil, [-o.eps * g], Sm, o.polish_condition)
@@ -624,15 +641,32 @@ def compute_trace(system, p0, q0, l, W01, W10, options: TraceTestOptions | None 
         scale = float(max(np.max(np.abs(sp_ - s0)), np.max(np.abs(s0 - sm_)), 1.0))
         rel = float(np.max(np.abs(trace)) / scale)
         d2 = np.max(np.abs(Sp - 2 * S + Sm), axis=1) / scale
-        return TraceResult(status="passed" if rel <= o.tol else "failed", trace=trace, relative=rel, scale=scale,
+        status, reason = _verdict(rel, float(np.min(d2)), o)
+        return TraceResult(status=status, trace=trace, relative=rel, scale=scale,
                            tol=o.tol, detection=float(np.min(d2)), detection_median=float(np.median(d2)), gamma=g,
                            eps=o.eps, points=len(S), outcomes=outcomes, seconds=time.perf_counter() - t0,
                            endpoints_plus=Sp if keep_endpoints else None,
-                           endpoints_minus=Sm if keep_endpoints else None)
+                           endpoints_minus=Sm if keep_endpoints else None, required_separation=o.separation,
+                           reason=reason)
     return TraceResult(status="undecided", trace=np.full(len(keep), np.nan + 0j), relative=float("nan"),
                        scale=float("nan"), tol=o.tol, detection=float("nan"), detection_median=float("nan"),
                        gamma=complex(np.nan), eps=o.eps, points=len(S), outcomes=outcomes,
-                       seconds=time.perf_counter() - t0)
+                       seconds=time.perf_counter() - t0, required_separation=o.separation,
+                       reason=f"a pencil path was lost in each of {o.attempts} attempt(s)")
+
+
+def _verdict(relative: float, detection: float, o: TraceTestOptions) -> tuple[str, str]:
+    """(status, reason) of a trace whose paths all ended regular: "failed" above ``o.tol``; "passed" when a single
+    missing point would also show, ``detection >= o.separation * relative``; "undecided" otherwise (the trace is
+    zero to the tolerance but no clearer than one point's second difference: it could not have failed)."""
+    if relative > o.tol:
+        return "failed", f"relative trace {relative:.1e} > tol {o.tol:.0e}"
+    if detection < o.separation * relative:
+        return "undecided", (f"the trace {relative:.1e} does not separate: a single missing point would add only "
+                             f"{detection:.1e} (< {o.separation:g} times the trace); refine the points "
+                             f"(polish_condition=0) or widen the pencil (eps)")
+    return "passed", ""
+
 
 
 def verify_solution_completeness(system, p0, W01, seed: int = 0, options: TraceTestOptions | None = None,
