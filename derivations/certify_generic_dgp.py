@@ -87,7 +87,8 @@ def data_hash(parameters, solutions) -> str:
     return h.hexdigest()
 
 
-def _c(a):
+def complex_record(a):
+    """A complex array as JSON: {"re": [...], "im": [...]} (nested as the array)."""
     a = np.asarray(a, dtype=complex)
     return {"re": a.real.tolist(), "im": a.imag.tolist()}
 
@@ -154,12 +155,12 @@ def run_trace_test(m, p, X, seed, coordinates, verbose=True, start=None, chart=N
     res = verify_solution_completeness(fam, p, X, seed=seed, options=o, verbose=verbose, coordinates=coordinates,
                                        start=None if start is None else start["W10"], chart=chart)
     tr = res.trace
-    out = {"status": tr.status, "count": int(len(X)), "seed": seed, "q0": _c(res.q0), "l": _c(res.l),
+    out = {"status": tr.status, "count": int(len(X)), "seed": seed, "q0": complex_record(res.q0), "l": complex_record(res.l),
            "coordinates": [int(c) for c in res.coordinates],
-           "W10_count": int(len(res.W10)), "W10": _c(res.W10), "witnesses": res.witnesses, "trace": tr.to_dict(),
+           "W10_count": int(len(res.W10)), "W10": complex_record(res.W10), "witnesses": res.witnesses, "trace": tr.to_dict(),
            "options": o.to_dict(), "seconds": time.perf_counter() - t0}
     if chart is not None:
-        out["chart"] = {"seed": int(chart), "c": _c(res.chart),
+        out["chart"] = {"seed": int(chart), "c": complex_record(res.chart),
                         "note": "W10 found by monodromy on this chart of projective space (zero off y0 and the "
                                 "trace coordinates), mapped back; W10, l and the trace are in affine coordinates"}
     if start is not None:
@@ -173,7 +174,8 @@ def run_trace_test(m, p, X, seed, coordinates, verbose=True, start=None, chart=N
     return out
 
 
-def _uc(d):
+def complex_from_record(d):
+    """The complex array of :func:`complex_record`'s record."""
     return np.asarray(d["re"], dtype=float) + 1j * np.asarray(d["im"], dtype=float)
 
 
@@ -186,12 +188,12 @@ def resume_trace_test(m, p, X, prev, seed, grow=True, verbose=True):
     o = trace_options()
     t0 = time.perf_counter()
     cs = prev["coordinates"]
-    q0, l = _uc(prev["q0"]), _uc(prev["l"])
-    W10 = _uc(prev["W10"]).reshape(prev["W10_count"], fam.n + 1)
+    q0, l = complex_from_record(prev["q0"]), complex_from_record(prev["l"])
+    W10 = complex_from_record(prev["W10"]).reshape(prev["W10_count"], fam.n + 1)
     slice_ = TraceSliceSystem(fam, p, q0 - p, cs)
     gseed = seed + 1000 * (1 + len(prev.get("history", [])))
     if grow and "chart" in prev:  # grow on the recorded chart (see run_trace_test), then map back
-        c = _uc(prev["chart"]["c"])
+        c = complex_from_record(prev["chart"]["c"])
         Wc, lc = slice_to_chart(W10, l, c)
         sc = TraceSliceSystem(HomogenizedQuadratic(fam, c), p, q0 - p, chart_coordinates(cs))
         Wc, lc, rec = complete_witnesses(sc, lc, Wc, o, seed=gseed, verbose=verbose)
@@ -205,7 +207,7 @@ def resume_trace_test(m, p, X, prev, seed, grow=True, verbose=True):
                                        "relative": prev["trace"]["relative"], "eps": prev["trace"].get("eps"),
                                        "detection": prev["trace"].get("detection"), "seconds": prev["seconds"],
                                        "witnesses": prev["witnesses"], "trace_outcomes": prev["trace"]["outcomes"]}]
-    out = {**prev, "status": tr.status, "l": _c(l), "W10_count": int(len(W)), "W10": _c(W), "witnesses": rec,
+    out = {**prev, "status": tr.status, "l": complex_record(l), "W10_count": int(len(W)), "W10": complex_record(W), "witnesses": rec,
            "trace": tr.to_dict(), "options": o.to_dict(), "seconds": time.perf_counter() - t0, "history": hist}
     if verbose:
         print(f"m = {m}: trace test (resumed from |W10| = {prev['W10_count']}) {tr.status}: |W01| = {len(X)}, "
@@ -231,7 +233,7 @@ def run_monodromy(m, seed, loops_no_progress, p_stored, X_stored, verbose=True):
     D, merged = distinct_points(fam, res.parameters, res.solutions)  # monodromy's own test is blind to conditioning
     out = {**res.to_dict(), "count_raw": int(len(res.solutions)), "count": int(len(D)), "merge": merged,
            "max_loops_no_progress": loops_no_progress, "target_solutions_count": None,
-           "parameters": _c(res.parameters)}
+           "parameters": complex_record(res.parameters)}
     Y, counts = _move_stored(m, p_stored, X_stored, res.parameters, seed)
     a, b = _match(Y, D)
     # every stored point that arrives must be one of the points found (else the run from scratch missed it);
@@ -262,7 +264,7 @@ def run_phc(m, seed, timeout, p_stored, X_stored, verbose=True):
     inst = PolynomialSystem([sp.expand(e.xreplace(sub)) for e in fam.equations], fam.variables, (),
                             name=f"{fam.name}_instance")
     res = phc_run(inst, np.zeros(0), timeout=timeout)
-    out = {"parameters": _c(p), "seed": seed, "timeout_seconds": timeout}
+    out = {"parameters": complex_record(p), "seed": seed, "timeout_seconds": timeout}
     if res is None:
         out["status"] = "phc not installed"
         return out
@@ -274,7 +276,7 @@ def run_phc(m, seed, timeout, p_stored, X_stored, verbose=True):
         return out
     S = res["solutions"]
     out.update({"status": "finished", "regular": int(len(S)), "regular_real": res["real"],
-                "solutions": _c(S)})
+                "solutions": complex_record(S)})
     out.update(phc_match(m, seed, out, p_stored, X_stored, verbose))
     if verbose:
         print(f"m = {m}: phc -b {res['wall']:.0f} s, mixed volume {res['paths']}, {len(S)} regular", flush=True)
@@ -287,8 +289,8 @@ def phc_match(m, seed, phc, p_stored, X_stored, verbose=True):
     :func:`cdpr_algebra.homotopy.trace_test.distinct_points` (so a path of the move that jumped onto another's
     endpoint shows as a missing point, not as a match), then matched both ways."""
     fam = fast_family(m)
-    p = _uc(phc["parameters"])
-    S = _uc(phc["solutions"]).reshape(-1, fam.n)
+    p = complex_from_record(phc["parameters"])
+    S = complex_from_record(phc["solutions"]).reshape(-1, fam.n)
     lam = S[:, 12:12 + m]
     zero = np.any(np.abs(lam) <= 1e-8 * (1 + np.max(np.abs(S), axis=1))[:, None], axis=1)
     P, _ = distinct_points(fam, p, S[~zero])

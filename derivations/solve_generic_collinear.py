@@ -62,7 +62,7 @@ from cdpr_algebra.homotopy.trace_test import distinct_points, verify_solution_co
 from cdpr_algebra.model.taut_equations import encode, taut_family  # noqa: E402
 from certify_generic_dgp import POSE, _move_stored, trace_options  # noqa: E402
 from solve_generic_dgp import complex_rotation  # noqa: E402
-from solve_generic_rod import (extra_loop_check, monodromy_arguments, phc_agrees,  # noqa: E402
+from solve_generic_rod import (extra_loop_check, monodromy_arguments, phc_agrees, retrace,  # noqa: E402
                               store_if_certified, trace_record)
 
 
@@ -192,9 +192,15 @@ def main(argv=None) -> int:
     ap.add_argument("--chart", type=int, default=None, metavar="SEED",
                     help="find the trace test's witness points on a random chart of projective space")
     ap.add_argument("--phc", action="store_true", help="record PHCpack's count next to the stored sets (only)")
+    ap.add_argument("--retrace", type=float, default=None, metavar="EPS",
+                    help="the trace test of the stored sets again, every point refined in arbitrary precision, the "
+                         "pencil tracked to +-EPS (only)")
     args = ap.parse_args(argv)
     if args.phc:
         return max(record_phc(m, 7 + args.seed) for m in args.m)
+    if args.retrace is not None:
+        return max(retrace(collinear_path(m), taut_family(m), m, args.seed, args.retrace, args.chart, POSE,
+                           replace(trace_options(), fixed_parameters=fixed_parameters(m))) for m in args.m)
     status = 0
     for m in args.m:
         params, X, meta = solve_generic(m, seed=args.seed, no_progress=args.no_progress, extra=args.extra,

@@ -26,13 +26,15 @@ the literature, so none is aimed at:
 
 Recorded (twenty-fifth session, seed 1; m = 4 from seed 2, whose witness set made the trace pass where seed 1's,
 found in affine coordinates, did not): 12, 26, 20 and 8 solutions; PHCpack 12, 26, 20 and 8 (mixed volumes 72, 160,
-160, 64), every one matched both ways.  The trace's separation is weak for m = 2, 3, 4: the smallest second
-difference of a single point (``detection``) is below the tolerance 1e-8, so the trace alone would not notice a
-missing point that moves that nearly linearly along the pencil; PHCpack's count is the independent check there.
-With the pencil tracked to +-0.5 instead of +-0.1 (``--retrace 0.5``, recorded for m = 2 and 3, the first record
-kept in ``history``): detection / measured trace 7.6 and 47 (0.1 and 2.6 at +-0.1); m = 4 stayed at 0.24 in affine
-coordinates and reached 12 with the witness points on a chart (``--retrace 0.5 --chart 20131 --seed 2``, recorded;
-0.35 at +-0.1); m = 5 is 4.6e4 at +-0.1.
+160, 64), every one matched both ways.  The trace separated weakly for m = 2, 3, 4 at first: the smallest second
+difference of a single point (``detection``) was only 7.6, 47 and 12 times the measured trace (below the 1e-8
+tolerance), the trace being the rounding noise of double-precision points.  Since the thirty-fifth session a trace
+passes only with a separation of at least 100 (``TraceTestOptions.separation``), and ``--retrace EPS`` refines every
+point in arbitrary precision before the sums (``polish_condition=0``): m = 2, 3, 4 re-recorded at eps 0.5
+(``--retrace 0.5 --m 2 3``; ``--retrace 0.5 --m 4 --seed 2 --chart 20131``), relative traces 1.7e-14, 1.1e-14,
+1.6e-14 against detections 1.3e-10, 1.6e-9, 9.6e-9: separations 7.4e3, 1.4e5, 6.0e5 (156, 103, 124 s); m = 5
+separates by 4.6e4 as recorded (eps 0.1).  The records keep q0, l and W10, so that the trace can be computed again
+(``tests/test_dgp_rod.py``), and the earlier records in ``history``.
 """
 
 from __future__ import annotations
@@ -40,6 +42,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -51,6 +54,7 @@ from cdpr_algebra.homotopy.monodromy import MonodromyOptions, monodromy_solve, s
 from cdpr_algebra.homotopy.trace_test import (TraceTestOptions, distinct_points,  # noqa: E402
                                               verify_solution_completeness)
 from cdpr_algebra.model.rod_equations import ROD_M, rod_family  # noqa: E402
+from certify_generic_dgp import complex_from_record, complex_record  # noqa: E402
 
 DATA = ROOT / "cdpr_algebra" / "data"
 POSE_COORDINATES = list(range(6))  # the trace test in (G, u): lam and mu follow linearly and have poles on the curve
@@ -122,9 +126,11 @@ def extra_loop_check(fam, res, m: int, seed: int, extra: int, fixed=(), verbose:
 
 
 def trace_record(tr, count: int, seed: int, chart, seconds: float) -> dict:
-    """The record of a trace test ``tr`` of ``count`` stored solutions, kept in the file's ``meta["trace_test"]``."""
+    """The record of a trace test ``tr`` of ``count`` stored solutions, kept in the file's ``meta["trace_test"]``:
+    with q0, l and W10, so that the trace can be computed again (:func:`retrace`, the tests)."""
     return {"status": tr.trace.status, "count": int(count), "seed": seed,
             "coordinates": [int(c) for c in tr.coordinates], "chart": chart, "W10_count": int(len(tr.W10)),
+            "q0": complex_record(tr.q0), "l": complex_record(tr.l), "W10": complex_record(tr.W10),
             "trace": tr.trace.to_dict(), "witnesses": tr.witnesses, "seconds": seconds}
 
 
@@ -164,28 +170,42 @@ def run_phc(m: int, seed: int = 7, timeout: float = 3600, verbose: bool = True) 
     return out
 
 
-def retrace(m: int, seed: int, eps: float, chart: int | None = None, verbose: bool = True) -> int:
-    """The trace test of the stored set again with the pencil tracked to +-eps (a larger eps gives every point a
-    larger second difference, the test's separation), recorded in ``meta["trace_test"]`` when it passes (the
-    previous record kept in its ``history``); exit status 0 when it passed."""
+def retrace(path, fam, m: int, seed: int, eps: float, chart: int | None = None, coordinates=POSE_COORDINATES,
+            options: TraceTestOptions | None = None, verbose: bool = True) -> int:
+    """The trace test of the stored set of ``path`` (system ``fam``) again, every point refined in arbitrary
+    precision before the sums (``polish_condition=0``: the trace's rounding noise drops to ~1e-15, so it separates
+    from a single point's second difference) and the pencil tracked to +-eps (a larger eps gives every point a
+    larger second difference); W10 is the recorded one when the record holds it (same seed, q0, l), else found
+    again (``chart``; ``options`` the test's other settings).  Recorded in ``meta["trace_test"]`` when it passes (the previous
+    record kept in its ``history``); exit status 0 when it passed."""
     from cdpr_algebra.homotopy.monodromy import load_instance
+    from cdpr_algebra.homotopy.trace_test import TraceTestResult, compute_trace
 
-    fam = rod_family(m)
-    p0, X0, data = load_instance(path_for(m), fam)
+    p0, X0, data = load_instance(path, fam)
+    old = dict(data["meta"]["trace_test"])
+    o = replace(options or TraceTestOptions(), eps=eps, polish_condition=0.0)
     t0 = time.perf_counter()
-    tr = verify_solution_completeness(fam, p0, X0, seed=seed, options=TraceTestOptions(eps=eps), verbose=verbose,
-                                      coordinates=POSE_COORDINATES, chart=chart)
+    if "W10" in old and old["seed"] == seed:
+        q0, l = complex_from_record(old["q0"]), complex_from_record(old["l"])
+        W10 = complex_from_record(old["W10"]).reshape(old["W10_count"], fam.n + 1)
+        t = compute_trace(fam, p0, q0, l, X0, W10, o, seed=seed, coordinates=old["coordinates"])
+        tr = TraceTestResult(trace=t, q0=q0, l=l, W10=W10, witnesses=old["witnesses"], seed=seed, seconds=0.0,
+                             coordinates=np.asarray(old["coordinates"]))
+        chart = old.get("chart")
+    else:
+        tr = verify_solution_completeness(fam, p0, X0, seed=seed, options=o, verbose=verbose,
+                                          coordinates=coordinates, chart=chart)
     rec = trace_record(tr, len(X0), seed, chart, time.perf_counter() - t0)
     t = tr.trace
-    print(f"m = {m}: trace test with eps = {eps}: {t.status}, relative {t.relative:.1e}, detection {t.detection:.1e} "
-          f"(tol {t.tol:.0e}), {len(tr.W10)} witness points, {rec['seconds']:.0f} s", flush=True)
+    print(f"m = {m}: trace test with eps = {eps}, every point refined: {t.status}, relative {t.relative:.1e}, "
+          f"detection {t.detection:.1e} (separation {t.separation:.1e}; tol {t.tol:.0e}), {len(tr.W10)} witness "
+          f"points, {rec['seconds']:.0f} s {t.reason}", flush=True)
     if t.status != "passed":
         return 1
-    old = dict(data["meta"]["trace_test"])
     history = old.pop("history", []) + [{k: old[k] for k in ("status", "seed", "W10_count", "seconds")}
                                         | {"relative": old["trace"]["relative"], "detection": old["trace"]["detection"],
                                            "eps": old["trace"].get("eps")}]
-    save_instance(path_for(m), fam, p0, X0, **{**data["meta"], "trace_test": {**rec, "history": history}})
+    save_instance(path, fam, p0, X0, **{**data["meta"], "trace_test": {**rec, "history": history}})
     return 0
 
 
@@ -221,13 +241,14 @@ def main(argv=None) -> int:
                          "very large norm are ordinary there)")
     ap.add_argument("--phc", action="store_true", help="record PHCpack's count next to the stored sets (only)")
     ap.add_argument("--retrace", type=float, default=None, metavar="EPS",
-                    help="the trace test of the stored sets again, the pencil tracked to +-EPS (only)")
+                    help="the trace test of the stored sets again, every point refined in arbitrary precision, the "
+                         "pencil tracked to +-EPS (only)")
     args = ap.parse_args(argv)
     status = 0
     if args.phc:
         return max(record_phc(m, 7 + args.seed) for m in args.m)
     if args.retrace is not None:
-        return max(retrace(m, args.seed, args.retrace, args.chart) for m in args.m)
+        return max(retrace(path_for(m), rod_family(m), m, args.seed, args.retrace, args.chart) for m in args.m)
     for m in args.m:
         params, X, meta = solve_generic(m, seed=args.seed, no_progress=args.no_progress, extra=args.extra,
                                         chart=args.chart)

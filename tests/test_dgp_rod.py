@@ -63,11 +63,40 @@ def test_stored_generic_rod_sets_solve_their_equations_and_passed_the_trace_test
     assert meta["check"]["new_solutions"] == 0 and meta["monodromy"]["stopped_by"] == "no_progress"
     tr = meta["trace_test"]["trace"]
     assert tr["relative"] <= tr["tol"] and tr["points"] == len(X) + meta["trace_test"]["W10_count"]
-    # the trace separates weakly for m = 2, 3, 4 (a single point's second difference can be as small as 1e-11, below
-    # the tolerance): PHCpack's polyhedral homotopy on another random instance is the second, independent count
+    # the trace separates: a single missing point would add at least 100 times the measured trace (m = 2, 3, 4 did
+    # not, 7.6 to 47 times, until every point was refined in arbitrary precision before the sums); PHCpack's
+    # polyhedral homotopy on another random instance is a second, independent count
+    assert tr["detection"] >= 100 * tr["relative"]
     phc = meta["phc"]
     assert phc["status"] == "finished" and phc["regular"] <= phc["mixed_volume"]
     assert phc["phc_distinct"] == phc["stored_moved_distinct"] == phc["stored_matched"] == phc["phc_matched"] == len(X)
+
+
+def test_rod_trace_recomputed_from_its_record_separates_and_notices_a_missing_point():
+    """The m = 2 rod set's trace, recomputed from the recorded W10 along the recorded pencil with every point refined
+    in arbitrary precision, passes with a separation of at least 100; with the witness point of the smallest
+    second difference left out it does not pass (before the points were refined, such a point's signal, 1.3e-10,
+    was below the tolerance and only 7.6 times the trace's rounding noise: that test would have passed)."""
+    from cdpr_algebra.homotopy.monodromy import load_instance
+    from cdpr_algebra.homotopy.trace_test import TraceTestOptions, compute_trace
+    from cdpr_algebra.model.rod_equations import rod_family
+
+    def uc(d):
+        return np.asarray(d["re"], dtype=float) + 1j * np.asarray(d["im"], dtype=float)
+
+    fam = rod_family(2)
+    p, X, data = load_instance(rod_generic_path(2), fam)
+    tt = data["meta"]["trace_test"]
+    q0, l, gamma = uc(tt["q0"]), uc(tt["l"]), complex(tt["trace"]["gamma"]["re"], tt["trace"]["gamma"]["im"])
+    W10 = uc(tt["W10"]).reshape(tt["W10_count"], fam.n + 1)
+    o = TraceTestOptions(eps=tt["trace"]["eps"], polish_condition=0.0, attempts=1)
+    tr = compute_trace(fam, p, q0, l, X, W10, o, gamma=gamma, coordinates=tt["coordinates"], keep_endpoints=True)
+    assert tr.status == "passed" and tr.separation >= 100 and tr.relative <= 1e-12, tr.reason
+    S0 = np.concatenate([np.concatenate([X, np.zeros((len(X), 1))], axis=1), W10])[:, tt["coordinates"] + [fam.n]]
+    d2 = np.max(np.abs(tr.endpoints_plus - 2 * S0 + tr.endpoints_minus), axis=1)
+    k = int(np.argmin(d2[len(X):]))  # the witness point that moves most nearly linearly
+    short = compute_trace(fam, p, q0, l, X, np.delete(W10, k, axis=0), o, gamma=gamma, coordinates=tt["coordinates"])
+    assert short.status != "passed" and short.relative >= 0.5 * tr.detection, (short.status, short.relative)
 
 
 def test_line_coordinates_are_exact():
