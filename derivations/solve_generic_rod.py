@@ -110,12 +110,14 @@ def solve_generic(m: int, seed: int = 1, no_progress: int = 8, extra: int = 3, v
     return res.parameters, X, meta
 
 
-def extra_loop_check(fam, res, m: int, seed: int, extra: int, fixed=(), verbose: bool = True):
+def extra_loop_check(fam, res, m: int, seed: int, extra: int, fixed=(), verbose: bool = True, relations=()):
     """``extra`` more monodromy loops from the set of ``res`` with every known solution tracked around each (inside
-    the subfamily of ``fixed`` parameters): (the run, its solutions, new ones, distinct ones)."""
+    the subfamily of ``fixed`` parameters and linear ``relations``): (the run, its solutions, new ones, distinct
+    ones)."""
     check = monodromy_solve(fam, parameters=res.parameters, solutions=res.solutions, seed=seed + 1000,
                             options=MonodromyOptions(max_loops_no_progress=extra, initial_loops=extra,
-                                                     max_loops=extra, fixed_parameters=tuple(fixed)))
+                                                     max_loops=extra, fixed_parameters=tuple(fixed),
+                                                     parameter_relations=tuple(relations)))
     new = len(check.solutions) - len(res.solutions)
     X = check.solutions
     distinct = len(distinct_points(fam, res.parameters, X)[0])

@@ -16,7 +16,7 @@ import sympy as sp
 
 from cdpr_algebra.dgp.solve import available_m, fast_family, generic_path
 from cdpr_algebra.homotopy import PolynomialSystem, SolveOptions, TrackerOptions
-from cdpr_algebra.homotopy.monodromy import load_instance, monodromy_solve
+from cdpr_algebra.homotopy.monodromy import MonodromyOptions, load_instance, monodromy_solve
 from cdpr_algebra.homotopy.results import FAILURES
 from cdpr_algebra.homotopy.trace_test import (TracePencilSystem, TraceSliceSystem, TraceTestOptions, compute_trace,
                                               coordinate_chart, distinct_points, slice_from_chart, slice_to_chart,
@@ -153,6 +153,27 @@ def test_trace_test_small_family_passes_with_the_full_set(quadrics):
         assert tr.status == "failed" and tr.relative > 100 * tr.tol
     tr = compute_trace(S, p, res.q0, res.l, X, res.W10[1:], seed=3)
     assert tr.status == "failed"
+
+
+def test_monodromy_and_trace_test_inside_a_linear_subfamily():
+    """Two conics in a subfamily given by linear relations (c0_1 + c0_2 = 0 and c1_0 = c1_5): the seed, every loop point and the trace test's curve keep the relations exactly, and the trace
+    of the subfamily's own solution set passes there."""
+    from cdpr_algebra.homotopy.monodromy import in_subfamily, subfamily_directions, with_relations
+
+    S = _dense_quadrics(2)  # 6 coefficients per conic: 1, x1, x1^2, x0, x0 x1, x0^2 (itertools order)
+    rel = (((1, 1.0), (2, 1.0)), ((6, 1.0), (11, -1.0)))
+    N = subfamily_directions(S.m, (), rel)
+    assert N.shape == (S.m, S.m - 2) and np.allclose(N.T @ N, np.eye(S.m - 2))
+    z = np.arange(S.m) + 1j
+    w = with_relations(z + in_subfamily(z, (), rel), rel)
+    assert w[1] + w[2] == 0 and w[6] == w[11]
+    r = monodromy_solve(S, seed=4, options=MonodromyOptions(parameter_relations=rel, max_loops_no_progress=4))
+    p = r.parameters
+    assert p[1] + p[2] == 0 and p[6] == p[11]
+    assert len(r.solutions) == 4  # the relations leave the conics generic enough for Bezout's 4
+    res = verify_solution_completeness(S, p, r.solutions, seed=3, options=TraceTestOptions(parameter_relations=rel))
+    assert res.status == "passed"
+    assert res.q0[1] + res.q0[2] == 0 and res.q0[6] == res.q0[11]  # the curve stays in the subfamily
 
 
 def test_a_trace_that_does_not_separate_is_undecided(quadrics):

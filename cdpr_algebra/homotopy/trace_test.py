@@ -62,7 +62,7 @@ import numpy as np
 from .clusters import duplicate_groups, linked_groups
 from .endgame import SolveOptions
 from .homotopies import ParameterHomotopy
-from .monodromy import MonodromyOptions, monodromy_solve
+from .monodromy import MonodromyOptions, in_subfamily, monodromy_solve, with_relations
 from .results import STATUSES, SUCCESS
 from .endgame import track_paths
 from .trace_systems import (ChartPencilSystem, TracePencilSystem, TraceSliceSystem, _crandn,  # noqa: F401
@@ -86,6 +86,8 @@ class TraceTestOptions:
     * ``direction_scale`` [1.0]: q0 = p0 + direction_scale (1 + |p0|) z, z standard complex normal;
     * ``fixed_parameters`` [()]: indices of parameters where z = 0: the curve stays in that linear subfamily (the
       test of a subfamily's own solution set, as :class:`.monodromy.MonodromyOptions` finds it);
+    * ``parameter_relations`` [()]: more linear relations of that subfamily (as
+      :class:`.monodromy.MonodromyOptions`' own);
     * ``witness_loops_no_progress`` [5]: the first W10 monodromy runs in batches of this many loops and ends
       after a batch without a new distinct point (:func:`distinct_points`, conditioning-aware);
     * ``confirm_loops_no_progress`` [3]: the same for the re-solves at other random l;
@@ -111,6 +113,7 @@ class TraceTestOptions:
     attempts: int = 3
     direction_scale: float = 1.0
     fixed_parameters: tuple = ()
+    parameter_relations: tuple = ()
     witness_loops_no_progress: int = 5
     confirm_loops_no_progress: int = 3
     confirmations: int = 3
@@ -203,12 +206,14 @@ class TraceTestResult:
         return self.trace.passed
 
 
-def random_direction(p0, rng, scale: float = 1.0, fixed=()):
-    """q0 = p0 + scale (1 + |p0|) z, z standard complex normal (componentwise), zero at the indices ``fixed``."""
+def random_direction(p0, rng, scale: float = 1.0, fixed=(), relations=()):
+    """q0 = p0 + scale (1 + |p0|) z, z standard complex normal (componentwise), zero at the indices ``fixed``
+    (and, with ``relations``, projected onto the subfamily: :func:`.monodromy.in_subfamily`)."""
     p0 = np.asarray(p0, dtype=complex)
     z = _crandn(rng, *p0.shape)
     z[list(fixed)] = 0.0
-    return p0 + scale * (1 + np.abs(p0)) * z
+    z = scale * (1 + np.abs(p0)) * z
+    return with_relations(p0 + in_subfamily(z, fixed, relations), relations) if relations else p0 + z
 
 
 def _track(system, X, p_from, p_to, options, seed):
@@ -329,7 +334,7 @@ def trace_witnesses(system, p0, W01, q0=None, seed: int = 0, options: TraceTestO
     p0 = np.asarray(p0, dtype=complex)
     W01 = np.asarray(W01, dtype=complex).reshape(-1, system.n)
     if q0 is None:
-        q0 = random_direction(p0, rng, o.direction_scale, o.fixed_parameters)
+        q0 = random_direction(p0, rng, o.direction_scale, o.fixed_parameters, o.parameter_relations)
     q0 = np.asarray(q0, dtype=complex)
     slice_ = TraceSliceSystem(system, p0, q0 - p0, cs)
     record = {"moves": [], "monodromy": []}
