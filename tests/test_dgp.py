@@ -222,8 +222,8 @@ def test_cli_json_contract(tmp_path, capsys):
         assert set(sub) == {"taut", "status", "paths", "outcomes", "failures", "complete", "generic_count", "finite",
                             "real", "admissible", "failed_paths", "seconds", "skipped", "certified", "certified_real",
                             "uncertified", "settled", "admissible_complete", "excluded", "retried",
-                            "positive_dimensional", "collinear_anchors"}
-        assert sub["status"] == "complete" and sub["collinear_anchors"] is None
+                            "positive_dimensional", "collinear_anchors", "parallelogram"}
+        assert sub["status"] == "complete" and sub["collinear_anchors"] is None and sub["parallelogram"] is None
         assert sum(sub["outcomes"].values()) == sub["paths"] == sub["generic_count"] and sub["complete"]
         assert sub["certified"] in (None, sub["outcomes"]["regular"]) and sub["uncertified"] == {}
     assert out["outcomes"] == {k: sum(s["outcomes"][k] for s in out["subproblems"]) for k in out["outcomes"]}

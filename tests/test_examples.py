@@ -86,6 +86,7 @@ EXPECTED = {
     "seed004_table3": (3, 10.0, [0, 0, 1], False),
     "seed004_table4": (3, 10.0, [0, 0, 1], False),
     "symmetric_4cables": (4, 1.0, [0, 0, -1], True),
+    "flat_plate_4cables": (4, 1.0, [0, 0, -1], True),
     "beam_4cables": (4, 1.0, [0, 0, -1], True),
     "similar_3cables": (3, 1.0, [0, 0, -1], True),
 }

@@ -11,7 +11,7 @@ from cdpr_algebra.model.taut_equations import from_cable_frame, to_cable_frame
 __all__ = ["normalized_coordinates", "normalized_problem", "world_coordinates"]
 
 
-def normalized_problem(robot, rho, cables):
+def normalized_problem(robot, rho, cables, frame=None):
     """(parameters of the normalized problem, c, L, Rw, cb): world coordinates x' = Rw (x - c) / L with Rw taking
     the load direction to -z (the direction of the stored generic sets: a straight parameter path from there never
     passes near a vanishing load), load 1, and the platform frame moved to the centroid cb of the platform points
@@ -19,8 +19,9 @@ def normalized_problem(robot, rho, cables):
     L (:attr:`Robot.cable_scale`) is the size of the cable geometry alone: a centre of mass far from the attachment points
     (a long boom, or robots built with huge internal forces, tests/large_forces.py) does not shrink it.  Measured
     (thirteenth session, m = 4 and 5, K = 1e5, g' 1e4-1.5e5 sizes away): 0-2 failed paths instead of 138-194 with
-    the robot's size, which includes |b'_i - g'|."""
-    c, cb = robot.cable_frame
+    the robot's size, which includes |b'_i - g'|.  ``frame``: other origins (c, cb) (a subfamily's,
+    :func:`.parallelogram.centred_frame`)."""
+    c, cb = robot.cable_frame if frame is None else frame
     L = robot.cable_scale
     Rw = rotation_taking(robot.load_direction, np.array([0.0, 0.0, -1.0]))
     idx = list(cables)

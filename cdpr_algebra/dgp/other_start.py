@@ -31,20 +31,25 @@ OTHER_START_RADIUS = 0.25  # p_new = p_gen + radius z, z standard complex normal
 _CACHE: dict = {}
 
 
-def other_generic_instance(track_to, p_gen, X_gen, seed: int = OTHER_START_SEED, fixed=()):
+def other_generic_instance(track_to, p_gen, X_gen, seed: int = OTHER_START_SEED, fixed=(), relations=()):
     """(p_new, X_new): random complex parameters near the stored generic instance ``p_gen`` and all their solutions
     (taut coordinates), from ``track_to(p_new, seed)``, the DGP's run (:func:`.solve._track`) of the stored generic
     solutions ``X_gen`` to p_new as its target; None when any path fails or two end together (they would not be known
     to be all).  Drawn and tracked with ``seed`` alone, so the same whichever subproblem asks first; cached per
     (size of p_gen, number of solutions, seed): one stored instance per m and start set.  ``fixed``: indices of
-    parameters that keep their value (a subfamily's start set stays in its subfamily, :mod:`.collinear_anchors`)."""
+    parameters that keep their value (a subfamily's start set stays in its subfamily, :mod:`.collinear_anchors`), and
+    ``relations`` the subfamily's linear relations (:mod:`.parallelogram`)."""
+    from cdpr_algebra.homotopy.monodromy import in_subfamily, with_relations
+
     count = len(X_gen)
-    key = (len(p_gen), count, seed, tuple(fixed))
+    key = (len(p_gen), count, seed, tuple(fixed), tuple(relations))
     if key not in _CACHE:
         rng = np.random.default_rng(seed)
         z = rng.normal(size=p_gen.shape) + 1j * rng.normal(size=p_gen.shape)
         z[list(fixed)] = 0.0
         p_new = p_gen + OTHER_START_RADIUS * z
+        if relations:
+            p_new = with_relations(p_gen + OTHER_START_RADIUS * in_subfamily(z, fixed, relations), relations)
         res = track_to(p_new, seed)
         paths = res.track.paths
         regular = [s for s in res.solutions if not s.singular]

@@ -128,6 +128,9 @@ from .positive_dimensional import families_of_endpoints
 from .rod import rod_geometry, solve_rod_taut_set
 from .other_start import other_generic_instance
 from .collinear_anchors import collinear_start, fixed_parameters, line_frame
+from .parallelogram import (centred_frame, parallelogram_order, parallelogram_relations, parallelogram_start,
+                            subfamily_target)
+from .parallelogram import fixed_parameters as parallelogram_fixed
 from .tension_infinity import tension_infinity_undecided
 from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, study_roots, track_study_first
 from .unheld_roots import settle_on_conjugates, settle_on_unheld_roots
@@ -224,7 +227,10 @@ class DGPSubproblem:
     :mod:`.positive_dimensional` saw there (the real families of turning equilibria listed; the subproblem stays
     incomplete), or, for a taut set solved as a rod (:mod:`.rod`), its families, one per root (complete when the
     rod's account is); ``collinear_anchors``: the reading (binary or decimal) of a taut set whose anchors lie on a
-    line with G off it, tracked from that subfamily's generic set (:mod:`.collinear_anchors`; None otherwise)."""
+    line with G off it, tracked from that subfamily's generic set (:mod:`.collinear_anchors`; None otherwise);
+    ``parallelogram``: the 1-based cables in the order of their diagonals when the exit points and the platform
+    anchors are two parallelograms, the anchors' centred on G, tracked from that subfamily's generic set
+    (:mod:`.parallelogram`; None otherwise)."""
 
     taut: tuple  # 1-based
     paths: int
@@ -245,6 +251,7 @@ class DGPSubproblem:
     retried: dict = field(default_factory=dict)  # paths whose outcome came from a retry, per kind (taut, detour, ..)
     family: object = None  # positive_dimensional.Family: uncertified endpoints on positive-dimensional sets
     collinear_anchors: str | None = None  # tracked from the collinear-anchors subfamily: the robot's reading there
+    parallelogram: tuple | None = None  # tracked from the centred-parallelograms subfamily: the diagonals' order
 
     @property
     def admissible_complete(self) -> bool:
@@ -281,7 +288,10 @@ class DGPSubproblem:
                 "retried": dict(self.retried),
                 "positive_dimensional": None if self.family is None else self.family.to_dict(),
                 "collinear_anchors": None if self.collinear_anchors is None else
-                {"start": "collinear_generic", "reading": self.collinear_anchors}}
+                {"start": "collinear_generic", "reading": self.collinear_anchors},
+                "parallelogram": None if self.parallelogram is None else
+                {"start": "parallelogram_generic", "diagonals": [list(self.parallelogram[0::2]),
+                                                                 list(self.parallelogram[1::2])]}}
 
 
 @dataclass(frozen=True)
@@ -586,8 +596,8 @@ def excluded_subproblem(robot, rho, cables) -> DGPSubproblem | None:
 
 def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bool = True, rods: bool = True):
     """(DGPSubproblem, admissible DGPSolutions, regular endpoints in world coordinates or None) of the 0-based taut
-    set ``cables``; ``rods`` False tracks a taut set on a line with the 6-DOF homotopy too (tests: the two routes
-    cross-checked)."""
+    set ``cables``; ``rods`` False tracks a taut set on a line, or on two centred parallelograms, with the generic
+    6-DOF homotopy too (tests: the two routes cross-checked)."""
     t0 = time.perf_counter()
     cables = tuple(cables)
     taut1 = tuple(c + 1 for c in cables)
@@ -618,10 +628,17 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
                              f"no stored generic solution set for m = {m} (run derivations/solve_generic_dgp.py --m {m})",
                              complete=False), [], None
     fam = fast_family(m)
-    target, c, L, Rw, cb = normalized_problem(robot, rho, cables)
-    start, fixed = None, ()
+    # four cables on two centred parallelograms: tracked inside that subfamily (dgp.parallelogram), the cables in the
+    # order of its diagonals (the roots' tensions are put back in the order of ``cables`` below)
+    order = parallelogram_order(robot, cables) if rods and line is None and frame is None else None
+    cables_in, cables = cables, cables if order is None else order
+    target, c, L, Rw, cb = normalized_problem(robot, rho, cables, None if order is None else centred_frame(robot, order))
+    start, fixed, relations = None, (), ()
     if frame is not None:  # the subfamily's own generic set, the line as the platform frame's x axis
         target, start, fixed = frame.target(target, m, cb, L), collinear_start(m), fixed_parameters(m)
+    if order is not None:
+        target, start = subfamily_target(target), parallelogram_start()
+        fixed, relations = parallelogram_fixed(), parallelogram_relations()
     res, failed = _track(m, target, seed, gamma=False, options=options, start=start)
     # another route (gamma trick) when one or two paths failed, and the run with fewer failures is kept (each run is
     # a whole account).  Only a run with no failure completes the subproblem, and a new route seldom gives one: the
@@ -638,7 +655,8 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
         if failed:  # the other run's regular roots that no path of this one holds settle its failed paths
             res, failed = _settle_on_other_runs_roots(m, target, res, other, options)
         other_start = other_generic_instance(lambda p, s: _track(m, p, s, True, start=start)[0],
-                                             *(start or _generic(m)), fixed=fixed) if failed and OTHER_START else None
+                                             *(start or _generic(m)), fixed=fixed, relations=relations) \
+            if failed and OTHER_START else None
         if other_start is not None:  # ... and those of a run from another generic instance (dgp.other_start)
             res, failed = _settle_on_other_runs_roots(
                 m, target, res, _track(m, target, seed, True, options, other_start)[0], options)
@@ -693,9 +711,13 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     sub = DGPSubproblem(taut1, len(paths), finite, int(np.sum(real)), len(sols), time.perf_counter() - t0,
                         outcomes=outcomes, failures=failures, complete=False, generic_count=generic, retried=retried,
                         family=family,
-                        collinear_anchors=None if frame is None else frame.reading)
+                        collinear_anchors=None if frame is None else frame.reading,
+                        parallelogram=None if order is None else tuple(k + 1 for k in order))
     regular = back(np.array([s.x for s in res.solutions if not s.singular]).reshape(-1, fam.n))
-    return sub, sols, world_coordinates(regular, m, c, L, Rw, cb, robot.load)
+    Z = world_coordinates(regular, m, c, L, Rw, cb, robot.load)
+    if order is not None:  # the tensions in the order of the taut set as given
+        Z = np.hstack([Z[:, :12], Z[:, 12:][:, [order.index(k) for k in cables_in]]])
+    return sub, sols, Z
 
 
 def _real_newton_polish(fam, Xr, target, iterations: int = 2):

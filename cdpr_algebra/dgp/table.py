@@ -56,6 +56,11 @@ def dgp_table(result: DGPResult, n: int) -> str:
             lines.append(f"  {list(s.taut)}: taut anchors on one line, G off it: tracked from that subfamily's generic set "
                          f"({s.generic_count} paths)"
                          + (", the robot read in decimal" if s.collinear_anchors != BINARY else ""))
+        if s.parallelogram is not None:
+            a, b, c, d = s.parallelogram
+            lines.append(f"  {list(s.taut)}: exit points and platform anchors two parallelograms (diagonals {a}-{c} and "
+                         f"{b}-{d}), the anchors' centred on G: tracked from that subfamily's generic set "
+                         f"({s.generic_count} paths)")
     for s in result.subproblems:
         if s.excluded is not None:
             continue
