@@ -61,7 +61,8 @@ from cdpr_algebra.homotopy.trace_test import verify_solution_completeness  # noq
 from cdpr_algebra.model.taut_equations import encode, taut_family  # noqa: E402
 from certify_generic_dgp import POSE, trace_options  # noqa: E402
 from solve_generic_dgp import complex_rotation  # noqa: E402
-from solve_generic_rod import extra_loop_check, monodromy_arguments, store_if_certified, trace_record  # noqa: E402
+from solve_generic_rod import (extra_loop_check, monodromy_arguments, phc_agrees, store_if_certified,  # noqa: E402
+                               trace_record)
 
 M = PARALLELOGRAM_M
 PATH = parallelogram_path()
@@ -119,6 +120,49 @@ def solve_generic(seed: int = 1, no_progress: int = 8, extra: int = 3, noise: fl
     return res.parameters, X, meta
 
 
+def run_phc(seed: int = 9, timeout: float = 7200, verbose: bool = True) -> dict:
+    """PHCpack's blackbox count on a random complex member of the subfamily (the rectangle robot plus complex noise
+    inside it), its regular solutions with every lam_i nonzero matched with the stored set moved there."""
+    import sympy as sp
+
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    from bench_homotopy import phc_run  # noqa: E402
+    from certify_generic_dgp import _move_stored  # noqa: E402
+    from cdpr_algebra.homotopy.monodromy import load_instance
+    from cdpr_algebra.homotopy.systems import PolynomialSystem
+    from cdpr_algebra.homotopy.trace_test import distinct_points
+
+    fam = taut_family(M)
+    p0, X0, _ = load_instance(PATH, fam)
+    rng = np.random.default_rng(seed)
+    fixed, rel = fixed_parameters(), parallelogram_relations()
+    p = rectangle_robot()
+    p = with_relations(p + in_subfamily(0.3 * (np.abs(p) + 0.1) * (rng.normal(size=p.size)
+                                                                     + 1j * rng.normal(size=p.size)), fixed, rel), rel)
+    sub = {v: sp.Float(z.real, 17) + sp.Float(z.imag, 17) * sp.I for v, z in zip(fam.parameters, p)}
+    inst = PolynomialSystem([sp.expand(e.xreplace(sub)) for e in fam.equations], fam.variables, (),
+                            "parallelogram_instance")
+    res = phc_run(inst, np.zeros(0), timeout=timeout)
+    if res is None or res["timeout"]:
+        return {"status": "phc not installed" if res is None else "timeout", "seed": seed}
+    S = np.asarray(res["solutions"], dtype=complex).reshape(-1, fam.n)
+    lam_zero = np.any(np.abs(S[:, 12:]) <= 1e-8 * (1 + np.max(np.abs(S), axis=1))[:, None], axis=1)
+    P, _ = distinct_points(fam, p, S[~lam_zero])
+    Y, moves = _move_stored(M, p0, X0, p, seed)
+    d = np.max(np.abs(Y[:, None, :] - P[None, :, :]), axis=2) if len(Y) and len(P) else np.zeros((len(Y), len(P)))
+    close = d <= 1e-6 * (1 + np.max(np.abs(Y), axis=1))[:, None]
+    out = {"status": "finished", "seed": seed, "wall_seconds": res["wall"], "mixed_volume": res["paths"],
+           "regular": int(len(S)), "regular_some_lam_zero": int(lam_zero.sum()), "phc_distinct": int(len(P)),
+           "stored": int(len(X0)), "stored_moved_distinct": int(len(Y)), "moves": moves,
+           "stored_matched": int(close.any(axis=1).sum()), "phc_matched": int(close.any(axis=0).sum())}
+    if verbose:
+        print(f"m = {M}: PHCpack {out['phc_distinct']} distinct regular solutions with every lam_i nonzero (mixed "
+              f"volume {out['mixed_volume']}, {res['wall']:.0f} s); stored {len(X0)} moved there: {len(Y)} distinct, "
+              f"{out['stored_matched']} match a PHCpack solution, {out['phc_matched']} of PHCpack's matched",
+              flush=True)
+    return out
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     monodromy_arguments(ap, (M,))
@@ -128,7 +172,15 @@ def main(argv=None) -> int:
                     help="the trace test in every unknown (default: the 12 pose unknowns)")
     ap.add_argument("--keep", type=Path, default=None, metavar="FILE",
                     help="also write the set and its record to FILE, stored or not (its W10 for a later trace)")
+    ap.add_argument("--phc", action="store_true", help="record PHCpack's count next to the stored set (only)")
     args = ap.parse_args(argv)
+    if args.phc:
+        from cdpr_algebra.homotopy.monodromy import load_instance
+
+        rec = run_phc(7 + args.seed)
+        p0, X0, data = load_instance(PATH, taut_family(M))  # read after the run: the record is added to the latest
+        save_instance(PATH, taut_family(M), p0, X0, **{**data["meta"], "phc": rec})
+        return 0 if phc_agrees(rec, len(X0)) else 1
     params, X, meta = solve_generic(seed=args.seed, no_progress=args.no_progress, extra=args.extra, noise=args.noise,
                                     eps=args.eps, coordinates=None if args.all_coordinates else POSE)
     print(f"m = {M}: largest solution norm {meta['max_norm']:.1e}", flush=True)
