@@ -136,19 +136,26 @@ def solve_generic(m: int, seed: int = 1, no_progress: int = 8, extra: int = 3, n
 
 def run_phc(m: int, seed: int = 7, timeout: float = 3600, verbose: bool = True) -> dict:
     """PHCpack's count on a random complex member of the subfamily, matched with the stored set moved there."""
+    from cdpr_algebra.homotopy.monodromy import load_instance
+
+    p0, X0, _ = load_instance(collinear_path(m), taut_family(m))
+    p = noisy(regular_collinear_robot(m), fixed_parameters(m), np.random.default_rng(seed), 0.3)
+    return phc_count_at(m, p0, X0, p, seed, timeout, "collinear_instance", verbose)
+
+
+def phc_count_at(m: int, p0, X0, p, seed: int, timeout: float, name: str, verbose: bool = True) -> dict:
+    """PHCpack's blackbox on the taut system of m cables at the complex parameters p (a member of a subfamily), its
+    regular solutions with every lam_i nonzero de-duplicated and matched both ways with the stored set X0 (at p0)
+    moved to p; the record of ``meta["phc"]``."""
     import sympy as sp
 
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bench_homotopy import phc_run  # noqa: E402
-    from cdpr_algebra.homotopy.monodromy import load_instance
     from cdpr_algebra.homotopy.systems import PolynomialSystem
 
     fam = taut_family(m)
-    p0, X0, _ = load_instance(collinear_path(m), fam)
-    p = noisy(regular_collinear_robot(m), fixed_parameters(m), np.random.default_rng(seed), 0.3)
     sub = {v: sp.Float(z.real, 17) + sp.Float(z.imag, 17) * sp.I for v, z in zip(fam.parameters, p)}
-    inst = PolynomialSystem([sp.expand(e.xreplace(sub)) for e in fam.equations], fam.variables, (),
-                            "collinear_instance")
+    inst = PolynomialSystem([sp.expand(e.xreplace(sub)) for e in fam.equations], fam.variables, (), name)
     res = phc_run(inst, np.zeros(0), timeout=timeout)
     if res is None or res["timeout"]:
         return {"status": "phc not installed" if res is None else "timeout", "seed": seed}

@@ -122,45 +122,17 @@ def solve_generic(seed: int = 1, no_progress: int = 8, extra: int = 3, noise: fl
 
 def run_phc(seed: int = 9, timeout: float = 7200, verbose: bool = True) -> dict:
     """PHCpack's blackbox count on a random complex member of the subfamily (the rectangle robot plus complex noise
-    inside it), its regular solutions with every lam_i nonzero matched with the stored set moved there."""
-    import sympy as sp
-
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    from bench_homotopy import phc_run  # noqa: E402
-    from certify_generic_dgp import _move_stored  # noqa: E402
+    inside it), matched with the stored set moved there (:func:`solve_generic_collinear.phc_count_at`)."""
     from cdpr_algebra.homotopy.monodromy import load_instance
-    from cdpr_algebra.homotopy.systems import PolynomialSystem
-    from cdpr_algebra.homotopy.trace_test import distinct_points
+    from solve_generic_collinear import phc_count_at
 
-    fam = taut_family(M)
-    p0, X0, _ = load_instance(PATH, fam)
+    p0, X0, _ = load_instance(PATH, taut_family(M))
     rng = np.random.default_rng(seed)
     fixed, rel = fixed_parameters(), parallelogram_relations()
     p = rectangle_robot()
     p = with_relations(p + in_subfamily(0.3 * (np.abs(p) + 0.1) * (rng.normal(size=p.size)
                                                                      + 1j * rng.normal(size=p.size)), fixed, rel), rel)
-    sub = {v: sp.Float(z.real, 17) + sp.Float(z.imag, 17) * sp.I for v, z in zip(fam.parameters, p)}
-    inst = PolynomialSystem([sp.expand(e.xreplace(sub)) for e in fam.equations], fam.variables, (),
-                            "parallelogram_instance")
-    res = phc_run(inst, np.zeros(0), timeout=timeout)
-    if res is None or res["timeout"]:
-        return {"status": "phc not installed" if res is None else "timeout", "seed": seed}
-    S = np.asarray(res["solutions"], dtype=complex).reshape(-1, fam.n)
-    lam_zero = np.any(np.abs(S[:, 12:]) <= 1e-8 * (1 + np.max(np.abs(S), axis=1))[:, None], axis=1)
-    P, _ = distinct_points(fam, p, S[~lam_zero])
-    Y, moves = _move_stored(M, p0, X0, p, seed)
-    d = np.max(np.abs(Y[:, None, :] - P[None, :, :]), axis=2) if len(Y) and len(P) else np.zeros((len(Y), len(P)))
-    close = d <= 1e-6 * (1 + np.max(np.abs(Y), axis=1))[:, None]
-    out = {"status": "finished", "seed": seed, "wall_seconds": res["wall"], "mixed_volume": res["paths"],
-           "regular": int(len(S)), "regular_some_lam_zero": int(lam_zero.sum()), "phc_distinct": int(len(P)),
-           "stored": int(len(X0)), "stored_moved_distinct": int(len(Y)), "moves": moves,
-           "stored_matched": int(close.any(axis=1).sum()), "phc_matched": int(close.any(axis=0).sum())}
-    if verbose:
-        print(f"m = {M}: PHCpack {out['phc_distinct']} distinct regular solutions with every lam_i nonzero (mixed "
-              f"volume {out['mixed_volume']}, {res['wall']:.0f} s); stored {len(X0)} moved there: {len(Y)} distinct, "
-              f"{out['stored_matched']} match a PHCpack solution, {out['phc_matched']} of PHCpack's matched",
-              flush=True)
-    return out
+    return phc_count_at(M, p0, X0, p, seed, timeout, "parallelogram_instance", verbose)
 
 
 def main(argv=None) -> int:
