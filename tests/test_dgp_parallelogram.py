@@ -70,6 +70,11 @@ def test_stored_subfamily_set_solves_its_equations_and_passed_the_trace_test():
     tr = trace["trace"]
     assert tr["relative"] <= tr["tol"] and tr["detection"] >= 100 * tr["relative"]
     assert tr["points"] == len(X) + trace["W10_count"]
+    # PHCpack's blackbox on another random member of the subfamily (a polyhedral homotopy, independent of the
+    # monodromy): its regular solutions with every lam_i nonzero are the stored set moved there, matched both ways
+    phc = meta["phc"]
+    assert phc["status"] == "finished" and phc["regular"] <= phc["mixed_volume"]
+    assert phc["phc_distinct"] == phc["phc_matched"] == phc["stored_matched"] == phc["stored_moved_distinct"] == len(X)
     # fewer than the generic family's 216: the others leave to infinity in the subfamily
     assert len(X) == 152 < len(load_instance(ROOT / "cdpr_algebra" / "data" / "dgp_generic_m4.json",
                                              check_hash=False)[1])
