@@ -47,9 +47,8 @@ def other_generic_instance(track_to, p_gen, X_gen, seed: int = OTHER_START_SEED,
         rng = np.random.default_rng(seed)
         z = rng.normal(size=p_gen.shape) + 1j * rng.normal(size=p_gen.shape)
         z[list(fixed)] = 0.0
-        p_new = p_gen + OTHER_START_RADIUS * z
-        if relations:
-            p_new = with_relations(p_gen + OTHER_START_RADIUS * in_subfamily(z, fixed, relations), relations)
+        p_new = with_relations(p_gen + OTHER_START_RADIUS * in_subfamily(z, fixed, relations), relations) \
+            if relations else p_gen + OTHER_START_RADIUS * z
         res = track_to(p_new, seed)
         paths = res.track.paths
         regular = [s for s in res.solutions if not s.singular]
