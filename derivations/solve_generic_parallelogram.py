@@ -58,8 +58,8 @@ sys.path.insert(0, str(ROOT / "derivations"))
 from cdpr_algebra.dgp.parallelogram import (PARALLELOGRAM_M, fixed_parameters,  # noqa: E402
                                             parallelogram_path, parallelogram_relations)
 from cdpr_algebra.dgp.solve import fast_family  # noqa: E402
-from cdpr_algebra.homotopy.monodromy import (MonodromyOptions, in_subfamily, monodromy_solve,  # noqa: E402
-                                             save_instance, with_relations)
+from cdpr_algebra.homotopy.monodromy import (MonodromyOptions, monodromy_solve, save_instance,  # noqa: E402
+                                             subfamily_point)
 from cdpr_algebra.homotopy.trace_test import verify_solution_completeness  # noqa: E402
 from cdpr_algebra.model.taut_equations import encode, taut_family  # noqa: E402
 from certify_generic_dgp import POSE, trace_options  # noqa: E402
@@ -79,6 +79,13 @@ def rectangle_robot(m: int = M) -> np.ndarray:
     return np.concatenate([A.ravel(), np.full(m, 0.7 ** 2), b.ravel(), np.zeros(3), [0.0, 0.0, -1.0]])
 
 
+def rectangle_member(rng, noise: float = 0.3) -> np.ndarray:
+    """:func:`rectangle_robot` plus relative complex noise inside the subfamily: a random complex member."""
+    p = rectangle_robot()
+    z = noise * (np.abs(p) + 0.1) * (rng.normal(size=p.size) + 1j * rng.normal(size=p.size))
+    return subfamily_point(p, z, fixed_parameters(), parallelogram_relations())
+
+
 def solve_generic(seed: int = 1, no_progress: int = 8, extra: int = 3, noise: float = 0.3, verbose: bool = True,
                   eps: float | None = None, coordinates=POSE):
     fam = fast_family(M)
@@ -86,9 +93,7 @@ def solve_generic(seed: int = 1, no_progress: int = 8, extra: int = 3, noise: fl
     rng = np.random.default_rng(seed)
     x0 = encode(0.3 * (rng.normal(size=3) + 1j * rng.normal(size=3)), complex_rotation(rng),
                 rng.normal(size=M) + 1j * rng.normal(size=M))
-    p = rectangle_robot()
-    z = noise * (np.abs(p) + 0.1) * (rng.normal(size=p.size) + 1j * rng.normal(size=p.size))
-    guess = with_relations(p + in_subfamily(z, fixed, rel), rel)
+    guess = rectangle_member(rng, noise)
     t0 = time.perf_counter()
     res = monodromy_solve(fam, seed=seed, x0=x0, p_guess=guess,
                           options=MonodromyOptions(max_loops_no_progress=no_progress, max_loops=120,
@@ -130,11 +135,7 @@ def run_phc(seed: int = 9, timeout: float = 7200, verbose: bool = True) -> dict:
     from solve_generic_collinear import phc_count_at
 
     p0, X0, _ = load_instance(PATH, taut_family(M))
-    rng = np.random.default_rng(seed)
-    fixed, rel = fixed_parameters(), parallelogram_relations()
-    p = rectangle_robot()
-    p = with_relations(p + in_subfamily(0.3 * (np.abs(p) + 0.1) * (rng.normal(size=p.size)
-                                                                     + 1j * rng.normal(size=p.size)), fixed, rel), rel)
+    p = rectangle_member(np.random.default_rng(seed))
     return phc_count_at(M, p0, X0, p, seed, timeout, "parallelogram_instance", verbose)
 
 

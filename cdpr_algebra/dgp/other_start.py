@@ -39,16 +39,14 @@ def other_generic_instance(track_to, p_gen, X_gen, seed: int = OTHER_START_SEED,
     (size of p_gen, number of solutions, seed): one stored instance per m and start set.  ``fixed``: indices of
     parameters that keep their value (a subfamily's start set stays in its subfamily, :mod:`.collinear_anchors`), and
     ``relations`` the subfamily's linear relations (:mod:`.parallelogram`)."""
-    from cdpr_algebra.homotopy.monodromy import in_subfamily, with_relations
+    from cdpr_algebra.homotopy.monodromy import subfamily_point
 
     count = len(X_gen)
     key = (len(p_gen), count, seed, tuple(fixed), tuple(relations))
     if key not in _CACHE:
         rng = np.random.default_rng(seed)
         z = rng.normal(size=p_gen.shape) + 1j * rng.normal(size=p_gen.shape)
-        z[list(fixed)] = 0.0
-        p_new = with_relations(p_gen + OTHER_START_RADIUS * in_subfamily(z, fixed, relations), relations) \
-            if relations else p_gen + OTHER_START_RADIUS * z
+        p_new = subfamily_point(p_gen, OTHER_START_RADIUS * z, fixed, relations)
         res = track_to(p_new, seed)
         paths = res.track.paths
         regular = [s for s in res.solutions if not s.singular]

@@ -37,7 +37,8 @@ from .systems import PolynomialSystem
 from .endgame import track_paths
 
 __all__ = ["MonodromyOptions", "MonodromyResult", "seed_instance", "monodromy_solve", "save_instance",
-           "load_instance", "FORMAT_VERSION", "subfamily_directions", "in_subfamily", "with_relations"]
+           "load_instance", "FORMAT_VERSION", "subfamily_directions", "in_subfamily", "with_relations",
+           "subfamily_point"]
 
 FORMAT_VERSION = 1
 
@@ -126,6 +127,13 @@ def in_subfamily(z, fixed=(), relations=()) -> np.ndarray:
     return z
 
 
+def subfamily_point(p0, z, fixed=(), relations=()) -> np.ndarray:
+    """p0 moved by the direction z inside the subfamily: p0 + :func:`in_subfamily` (z), the relations then made to
+    hold exactly (:func:`with_relations`); without relations, p0 + z with the ``fixed`` coordinates of z zeroed."""
+    p = np.asarray(p0) + in_subfamily(z, fixed, relations)
+    return with_relations(p, relations) if relations else p
+
+
 def seed_instance(system: PolynomialSystem, rng: np.random.Generator, x0=None, p_guess=None, iterations: int = 20,
                   fixed=(), relations=()):
     """Random complex (x0, p0) with F(x0; p0) = 0 (Gauss-Newton on the parameters, minimum-norm steps
@@ -156,10 +164,8 @@ def seed_instance(system: PolynomialSystem, rng: np.random.Generator, x0=None, p
 
 
 def _random_point(p0, rng, radius, fixed=(), relations=()):
-    scale = radius * (1 + np.abs(p0))
-    scale[list(fixed)] = 0.0
-    z = scale * (rng.normal(size=p0.shape) + 1j * rng.normal(size=p0.shape))
-    return with_relations(p0 + in_subfamily(z, fixed, relations), relations) if relations else p0 + z
+    z = radius * (1 + np.abs(p0)) * (rng.normal(size=p0.shape) + 1j * rng.normal(size=p0.shape))
+    return subfamily_point(p0, z, fixed, relations)
 
 
 def monodromy_solve(system: PolynomialSystem, parameters=None, solutions=None, seed: int = 0,

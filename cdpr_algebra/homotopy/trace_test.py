@@ -62,7 +62,7 @@ import numpy as np
 from .clusters import duplicate_groups, linked_groups
 from .endgame import SolveOptions
 from .homotopies import ParameterHomotopy
-from .monodromy import MonodromyOptions, in_subfamily, monodromy_solve, with_relations
+from .monodromy import MonodromyOptions, monodromy_solve, subfamily_point
 from .results import STATUSES, SUCCESS
 from .endgame import track_paths
 from .trace_systems import (ChartPencilSystem, TracePencilSystem, TraceSliceSystem, _crandn,  # noqa: F401
@@ -208,12 +208,9 @@ class TraceTestResult:
 
 def random_direction(p0, rng, scale: float = 1.0, fixed=(), relations=()):
     """q0 = p0 + scale (1 + |p0|) z, z standard complex normal (componentwise), zero at the indices ``fixed``
-    (and, with ``relations``, projected onto the subfamily: :func:`.monodromy.in_subfamily`)."""
+    (and, with ``relations``, projected onto the subfamily: :func:`.monodromy.subfamily_point`)."""
     p0 = np.asarray(p0, dtype=complex)
-    z = _crandn(rng, *p0.shape)
-    z[list(fixed)] = 0.0
-    z = scale * (1 + np.abs(p0)) * z
-    return with_relations(p0 + in_subfamily(z, fixed, relations), relations) if relations else p0 + z
+    return subfamily_point(p0, scale * (1 + np.abs(p0)) * _crandn(rng, *p0.shape), fixed, relations)
 
 
 def _track(system, X, p_from, p_to, options, seed):
