@@ -155,9 +155,11 @@ def run_trace_test(m, p, X, seed, coordinates, verbose=True, start=None, chart=N
     res = verify_solution_completeness(fam, p, X, seed=seed, options=o, verbose=verbose, coordinates=coordinates,
                                        start=None if start is None else start["W10"], chart=chart)
     tr = res.trace
-    out = {"status": tr.status, "count": int(len(X)), "seed": seed, "q0": complex_record(res.q0), "l": complex_record(res.l),
+    out = {"status": tr.status, "count": int(len(X)), "seed": seed, "q0": complex_record(res.q0),
+           "l": complex_record(res.l),
            "coordinates": [int(c) for c in res.coordinates],
-           "W10_count": int(len(res.W10)), "W10": complex_record(res.W10), "witnesses": res.witnesses, "trace": tr.to_dict(),
+           "W10_count": int(len(res.W10)), "W10": complex_record(res.W10), "witnesses": res.witnesses,
+           "trace": tr.to_dict(),
            "options": o.to_dict(), "seconds": time.perf_counter() - t0}
     if chart is not None:
         out["chart"] = {"seed": int(chart), "c": complex_record(res.chart),
@@ -207,7 +209,8 @@ def resume_trace_test(m, p, X, prev, seed, grow=True, verbose=True):
                                        "relative": prev["trace"]["relative"], "eps": prev["trace"].get("eps"),
                                        "detection": prev["trace"].get("detection"), "seconds": prev["seconds"],
                                        "witnesses": prev["witnesses"], "trace_outcomes": prev["trace"]["outcomes"]}]
-    out = {**prev, "status": tr.status, "l": complex_record(l), "W10_count": int(len(W)), "W10": complex_record(W), "witnesses": rec,
+    out = {**prev, "status": tr.status, "l": complex_record(l), "W10_count": int(len(W)), "W10": complex_record(W),
+           "witnesses": rec,
            "trace": tr.to_dict(), "options": o.to_dict(), "seconds": time.perf_counter() - t0, "history": hist}
     if verbose:
         print(f"m = {m}: trace test (resumed from |W10| = {prev['W10_count']}) {tr.status}: |W01| = {len(X)}, "

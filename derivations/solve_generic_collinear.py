@@ -37,7 +37,8 @@ Recorded (twenty-seventh session): m = 3, 4, 5: 76, 56 and 16 solutions (seeds 1
 1e10 and a pencil path was lost in every attempt, trace undecided); trace tests passed with |W10| = 724, 620, 224,
 relative traces 4.1e-12, 2.2e-12, 6.8e-13 and single-point detections 2.9e-11, 1.1e-7, 5.9e-7 (m = 3 separated
 weakly, 6.9 times its trace; re-recorded in the thirty-fifth session with every point refined in arbitrary
-precision, ``--retrace 1.0 --m 3``: relative trace 1.5e-15, the same 724 witness points, separation 1.9e4, 51 min).  PHCpack: m = 3, mixed volume 672, 75 and then
+precision, ``--retrace 1.0 --m 3``: relative trace 1.5e-15, the same 724 witness points, separation 1.9e4, 51 min).
+PHCpack: m = 3, mixed volume 672, 75 and then
 76 regular solutions in two runs, all among the stored set moved there; m = 5, mixed volume 128, 16; m = 4
 (twenty-eighth session), mixed volume 448, 56 in 116 s, matched both ways.
 """

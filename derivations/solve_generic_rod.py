@@ -178,8 +178,8 @@ def retrace(path, fam, m: int, seed: int, eps: float, chart: int | None = None, 
     precision before the sums (``polish_condition=0``: the trace's rounding noise drops to ~1e-15, so it separates
     from a single point's second difference) and the pencil tracked to +-eps (a larger eps gives every point a
     larger second difference); W10 is the recorded one when the record holds it (same seed, q0, l), else found
-    again (``chart``; ``options`` the test's other settings).  Recorded in ``meta["trace_test"]`` when it passes (the previous
-    record kept in its ``history``); exit status 0 when it passed."""
+    again (``chart``; ``options`` the test's other settings).  Recorded in ``meta["trace_test"]`` when it passes
+    (the previous record kept in its ``history``); exit status 0 when it passed."""
     from cdpr_algebra.homotopy.monodromy import load_instance
     from cdpr_algebra.homotopy.trace_test import TraceTestResult, compute_trace
 

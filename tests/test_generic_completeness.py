@@ -156,8 +156,9 @@ def test_trace_test_small_family_passes_with_the_full_set(quadrics):
 
 
 def test_monodromy_and_trace_test_inside_a_linear_subfamily():
-    """Two conics in a subfamily given by linear relations (c0_1 + c0_2 = 0 and c1_0 = c1_5): the seed, every loop point and the trace test's curve keep the relations exactly, and the trace
-    of the subfamily's own solution set passes there."""
+    """Two conics in a subfamily given by linear relations (c0_1 + c0_2 = 0 and c1_0 = c1_5): the seed, every loop
+    point and the trace test's curve keep the relations exactly, and the trace of the subfamily's own solution set
+    passes there."""
     from cdpr_algebra.homotopy.monodromy import in_subfamily, subfamily_directions, with_relations
 
     S = _dense_quadrics(2)  # 6 coefficients per conic: 1, x1, x1^2, x0, x0 x1, x0^2 (itertools order)

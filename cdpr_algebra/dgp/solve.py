@@ -632,7 +632,8 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     # order of its diagonals (the roots' tensions are put back in the order of ``cables`` below)
     order = parallelogram_order(robot, cables) if rods and line is None and frame is None else None
     cables_in, cables = cables, cables if order is None else order
-    target, c, L, Rw, cb = normalized_problem(robot, rho, cables, None if order is None else centred_frame(robot, order))
+    frame_c = None if order is None else centred_frame(robot, order)
+    target, c, L, Rw, cb = normalized_problem(robot, rho, cables, frame_c)
     start, fixed, relations = None, (), ()
     if frame is not None:  # the subfamily's own generic set, the line as the platform frame's x axis
         target, start, fixed = frame.target(target, m, cb, L), collinear_start(m), fixed_parameters(m)
