@@ -14,6 +14,7 @@ full dF/dp), and writes plain-arithmetic loop code over the cables, common subex
         taut_parameter_jacobian(x, p, JP)              the nonzero pattern of dF/dp
     cdpr_algebra/generated/taut_equations_intervals.py   taut_equations, taut_residual over complex intervals
     cdpr_algebra/generated/taut_residual_dd.py           taut_residual in complex double-double
+    cdpr_algebra/generated/taut_equations_dd.py          taut_equations in complex double-double
 
 x = (p, u, v, w, lam_1..lam_m), p = (A_i (3m), rho_i^2 (m), b'_i (3m), g' (3), Q d (3)) in the family's order.
 The code uses only + - * and indexing ``F[r]``, ``J[r, c]``, so the same function runs compiled by numba on one
@@ -41,6 +42,7 @@ from cdpr_algebra.model.taut_equations import taut_family  # noqa: E402
 TARGET = "cdpr_algebra/generated/taut_equations.py"
 INTERVAL_TARGET = "cdpr_algebra/generated/taut_equations_intervals.py"
 DD_TARGET = "cdpr_algebra/generated/taut_residual_dd.py"
+DD_EQUATIONS_TARGET = "cdpr_algebra/generated/taut_equations_dd.py"
 POSE = ["P0", "P1", "P2", "u0", "u1", "u2", "v0", "v1", "v2", "w0", "w1", "w2"]
 GLOBAL_PARAMS = ["g0", "g1", "g2", "f0", "f1", "f2"]
 CABLE_PARAMS = ["a0", "a1", "a2", "r2", "b0", "b1", "b2"]
@@ -237,7 +239,17 @@ def generate() -> dict[str, str]:
     # the residual with the evaluator signature: F at a box's centre in the form (and roundings) of taut_residual
     Fi = [line.replace("def taut_residual(x, p, F):", "def taut_residual(x, p, dp, F, J, Ht, with_ht):") for line in Fo]
     return {TARGET: text, INTERVAL_TARGET: _interval_text("\n".join(L + Fi) + "\n"),
-            DD_TARGET: _double_double_text("\n".join(Fo) + "\n")}
+            DD_TARGET: _double_double_text("\n".join(Fo) + "\n"),
+            DD_EQUATIONS_TARGET: _double_double_text("\n".join(L) + "\n", _DD_EQUATIONS_DOC, ("taut_equations",),
+                                                     flags=("with_ht",), sig="EQUATIONS_SIG")}
+
+
+_DD_EQUATIONS_DOC = (
+    "The DGP equations per taut set in double-double: ``taut_equations`` of\n"
+    ":mod:`cdpr_algebra.generated.taut_equations` (F, the pattern of J = dF/dx, and Ht = dF/dp . dp with ``with_ht``)\n"
+    "rewritten by :func:`cdpr_algebra.intervals.codegen.pair_arithmetic_source` over complex double-double numbers\n"
+    "(values are (re hi, re lo, im hi, im lo); x (12 + m, 4), p and dp (7 m + 6, 4), F and Ht (12 + m, 4), J (12 + m,\n"
+    "12 + m, 4)), compiled by numba for the double-double path tracker (:mod:`cdpr_algebra.homotopy.dd_tracker`).\n")
 
 
 def _numba_module(doc: str, body: str, sig: str, imports, names) -> str:

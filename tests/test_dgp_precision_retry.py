@@ -63,6 +63,7 @@ def test_failed_path_is_tracked_in_arbitrary_precision(monkeypatch):
     monkeypatch.setattr(dgp_solve, "AUTO_RESCUE_MAX_FAILED", 0)  # nor the rescue itself unless asked for
     monkeypatch.setattr(dgp_solve, "OTHER_START", False)  # nor the route from another generic instance
     monkeypatch.setattr(dgp_solve, "RERUN_MAX_FAILED", 0)  # nor the roots of the gamma re-run's route
+    monkeypatch.setattr(dgp_solve, "EXTENDED_MAX_FAILED", 0)  # nor the double-double track in (p, u, v, w, lam)
     sub1, _ = solve_taut_set(robot, rho, cables, certify=False, exclude=False)
     assert sub1.failed_paths == 1  # forced: without the retry, the path fails
 

@@ -178,6 +178,7 @@ def test_extended_precision_completes_marionet_subproblems(cables, monkeypatch):
     monkeypatch.setattr(D, "STUDY_FIRST", False)  # the taut system first (the pipeline before Study came first)
     monkeypatch.setattr(D, "STUDY_RETRACK", False)
     monkeypatch.setattr(D, "OTHER_START", False)  # a run from another generic instance settles the plain run's failures
+    monkeypatch.setattr(D, "EXTENDED_MAX_FAILED", 0)  # so does tracking them again in double-double (dgp.taut_extended)
     rerun = D.RERUN_MAX_FAILED
     monkeypatch.setattr(D, "RERUN_MAX_FAILED", 0)  # nor the gamma re-run, whose roots settle the plain run's too,
     monkeypatch.setattr(D, "CONJUGATE_ROOTS", False)  # nor the conjugates of its roots
@@ -224,6 +225,7 @@ def test_crosscheck_compares_what_extended_precision_completes(capsys, monkeypat
     path = str(EXAMPLES / "seed000_test3.toml")
     monkeypatch.setattr(D, "STUDY_FIRST", False)
     monkeypatch.setattr(D, "STUDY_RETRACK", False)
+    monkeypatch.setattr(D, "EXTENDED_MAX_FAILED", 0)  # failed paths not tracked again in double-double
     main(["crosscheck", path, "--taut", "2", "4", "5", "--jobs", "1", "--json"])
     plain = json.loads(capsys.readouterr().out)
     assert main(["crosscheck", path, "--taut", "2", "4", "5", "--jobs", "1", "--extended-precision", "--json"]) == 0

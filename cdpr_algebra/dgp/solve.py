@@ -55,7 +55,9 @@ Per taut set S (a *subproblem*, cables 1-based in reports):
   639 on Test 2; the paths still failed there lose accuracy to conditioning, 1e10..1e11 near large non-real
   solutions or singular sets at infinity, which smaller steps do not restore).  (Without ``STUDY_FIRST``, the
   taut system tracks every path first and the paths it leaves failed are tracked again in Study parameters along
-  the same parameter path, ``STUDY_RETRACK``, :func:`.study_retrack.retrack_failed_in_study`.)  If one or two failed
+  the same parameter path, ``STUDY_RETRACK``, :func:`.study_retrack.retrack_failed_in_study`.)  Up to 8 failed paths are
+  then tracked again from their start points with every step in double-double (:mod:`.taut_extended`: huge finite
+  roots, |x| ~ 2e7, that double precision loses in both coordinates).  If one or two failed
   paths remain (at most ``RERUN_MAX_FAILED`` = 4), the subproblem is re-run once with a random gamma and another seed,
   the run with fewer failures is kept and its failed paths are settled on the other run's regular roots that none of
   its paths holds (:func:`_settle_on_other_runs_roots`), then on those of a run from another generic instance
@@ -132,6 +134,7 @@ from .parallelogram import (centred_frame, parallelogram_order, parallelogram_re
                             subfamily_target)
 from .parallelogram import fixed_parameters as parallelogram_fixed
 from .tension_infinity import tension_infinity_undecided
+from .taut_extended import MAX_PATHS as EXTENDED_MAX_FAILED, rescue_in_taut_extended
 from .study_retrack import RESIDUAL_TOL, retrack_failed_in_study, study_roots, track_study_first
 from .unheld_roots import settle_on_conjugates, settle_on_unheld_roots
 from .taut_system import FastTautSystem, fast_family
@@ -641,6 +644,8 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
         target, start = subfamily_target(target), parallelogram_start()
         fixed, relations = parallelogram_fixed(), parallelogram_relations()
     res, failed = _track(m, target, seed, gamma=False, options=options, start=start)
+    if 0 < failed <= EXTENDED_MAX_FAILED:  # the failed paths again, every step in double-double (dgp.taut_extended)
+        res, failed = rescue_in_taut_extended(m, res, *(start or _generic(m)), target, options or default_options())
     # another route (gamma trick) when one or two paths failed, and the run with fewer failures is kept (each run is
     # a whole account).  Only a run with no failure completes the subproblem, and a new route seldom gives one: the
     # failures are mostly paths into the singular sets at infinity of the target itself, which every route meets.

@@ -37,7 +37,7 @@ from cdpr_algebra.homotopy.results import ENDGAME_FAILED, FAILURES, SINGULAR, SU
 from cdpr_algebra.homotopy.solve import group_solutions
 
 __all__ = ["CONJUGATE", "MAX_CONDITION", "NEWTON_STEPS", "SETTLED", "UNHELD_ROOT", "newton_roots", "residual_bound",
-           "settle_on_conjugates", "settle_on_unheld_roots"]
+           "settle_on_conjugates", "settle_on_found_roots", "settle_on_unheld_roots"]
 
 NEWTON_STEPS = 40  # Newton iterations from an estimate (ill-conditioned roots converge slowly from afar)
 SETTLED = 1e-10  # the last Newton update (relative) of a kept root
@@ -136,6 +136,22 @@ def settle_on_conjugates(result, options):
             found.append(dict(endpoint=z, residual=p.residual, condition=p.condition, accuracy=p.accuracy,
                               retried=CONJUGATE))
     return _settled(result, paths, failed, found, options)
+
+
+def settle_on_found_roots(result, found, options):
+    """(``result`` with its failed paths settled on the roots ``found`` (dicts of PathResult fields: endpoint,
+    residual, condition, accuracy, retried; found by any route, e.g. :mod:`.taut_extended`) that no settled path holds,
+    each counted once (the account of the module doc), the number of failed paths left)."""
+    paths, failed, held = _failed_and_held(result)
+    if not failed:
+        return result, 0
+    tol = options.endgame.cluster_tol
+    kept = []
+    for fields in found:
+        x = fields["endpoint"]
+        if not coincides_with_any(held, x, tol) and not coincides_with_any([f["endpoint"] for f in kept], x, tol):
+            kept.append(fields)
+    return _settled(result, paths, failed, kept, options)
 
 
 def _failed_and_held(result):
