@@ -40,6 +40,7 @@ def warm_kernels(robot) -> dict:
     t0 = time.perf_counter()
     dgp(robot, jobs=1)
     warm_study_kernels()  # the re-tracking of failed paths, which a robot without them never reaches
+    import cdpr_algebra.generated.taut_equations_dd  # noqa: F401  dgp.taut_extended's evaluator (compiled when imported)
     import cdpr_algebra.intervals.real_kernels  # noqa: F401  the IGP's certificates (compiled when imported)
     import cdpr_algebra.igp.polish_kernel  # noqa: F401  the IGP's Gauss-Newton polish (compiled when imported)
     fam = fast_family(2)  # dF/dp of the taut family (monodromy, trace tests), which the DGP's compiled tracker skips
