@@ -462,6 +462,7 @@ def test_last_failed_path_rescued_in_double_double(monkeypatch):
     robot = load_robot(ROOT / "examples" / "seed002_8cables.toml")
     monkeypatch.setattr(S, "OTHER_START", False)  # the route from another generic instance settles it first
     monkeypatch.setattr(S, "RERUN_MAX_FAILED", 0)  # and so do the roots of the gamma re-run's route
+    monkeypatch.setattr(S, "EXTENDED_MAX_FAILED", 0)  # and the double-double track in (p, u, v, w, lam)
     sub, _ = S.solve_taut_set(robot, robot.lengths, (1, 2, 5, 6), certify=False)
     assert sub.complete and sub.outcomes["failed"] == 0 and sub.retried.get("study_extended") == 1
     assert sub.certified == sub.outcomes["regular"] == 216

@@ -644,8 +644,11 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
         target, start = subfamily_target(target), parallelogram_start()
         fixed, relations = parallelogram_fixed(), parallelogram_relations()
     res, failed = _track(m, target, seed, gamma=False, options=options, start=start)
+    real_target = CONJUGATE_ROOTS and np.all(np.imag(target) == 0)  # then conjugates of roots are roots
     if 0 < failed <= EXTENDED_MAX_FAILED:  # the failed paths again, every step in double-double (dgp.taut_extended)
         res, failed = rescue_in_taut_extended(m, res, *(start or _generic(m)), target, options or default_options())
+        if failed and real_target:  # (cheap: before the re-runs)
+            res, failed = settle_on_conjugates(res, options or default_options())
     # another route (gamma trick) when one or two paths failed, and the run with fewer failures is kept (each run is
     # a whole account).  Only a run with no failure completes the subproblem, and a new route seldom gives one: the
     # failures are mostly paths into the singular sets at infinity of the target itself, which every route meets.
@@ -671,7 +674,7 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
         if failed and other is not None:  # the other route's failed paths rescued too: their roots settle these
             other, _ = _rescue_last_failed_paths(m, target, other, *other_route, options, start)
             res, failed = _settle_on_other_runs_roots(m, target, res, other, options, RESCUED_MAX_CONDITION)
-    if failed and CONJUGATE_ROOTS and np.all(np.imag(target) == 0):  # real target: conjugates of roots are roots
+    if failed and real_target:
         res, failed = settle_on_conjugates(res, default_options() if options is None else options)
     X = np.array([s.x for s in res.solutions]).reshape(-1, fam.n)
     finite = len(X)
