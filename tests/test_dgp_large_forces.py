@@ -232,8 +232,10 @@ def test_pair_of_condition_1e14_settles_the_last_two_paths(monkeypatch):
     """m = 6, K = 1e4 (seed 360): the equilibrium and its partner (tensions of both signs) have condition numbers
     ~1.2e14; their two paths fail in both routes, and Newton's method from the paths' last estimates converges to
     them (residual ~1e-17, last update ~1e-15).  Kept up to unheld_roots.MAX_CONDITION (1e15), the subproblem is
-    complete and the equilibrium certified; at the former bound 1e14 the two paths stay failed."""
+    complete and the equilibrium certified; at the former bound 1e14 the two paths stay failed, unless tracked again
+    in double-double from their start points (dgp.taut_extended), which reaches both."""
     import cdpr_algebra.dgp.unheld_roots as U
+    from cdpr_algebra.dgp.taut_extended import MAX_PATHS
 
     m = 6
     robot, p, R, tau = large_force_robot(m, 1e4, 360)
@@ -247,8 +249,12 @@ def test_pair_of_condition_1e14_settles_the_last_two_paths(monkeypatch):
 
     monkeypatch.setattr(U, "MAX_CONDITION", 1e14)
     monkeypatch.setattr(D, "AUTO_RESCUE_MAX_FAILED", 0)  # the double-double rescue reaches them too
+    monkeypatch.setattr(D, "EXTENDED_MAX_FAILED", 0)  # and so do the double-double tracks in (p, u, v, w, lam)
     sub, _ = solve_taut_set(robot, robot.lengths, cables, certify=False)
     assert not sub.complete and sub.outcomes["failed"] == 2
+    monkeypatch.setattr(D, "EXTENDED_MAX_FAILED", MAX_PATHS)  # (the default)
+    sub, _ = solve_taut_set(robot, robot.lengths, cables, certify=False)
+    assert sub.complete and sub.retried.get("taut_extended") == 2
 
 
 def test_tension_only_growth_in_the_study_run_is_not_at_infinity():

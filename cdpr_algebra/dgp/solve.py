@@ -646,9 +646,8 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     res, failed = _track(m, target, seed, gamma=False, options=options, start=start)
     real_target = CONJUGATE_ROOTS and np.all(np.imag(target) == 0)  # then conjugates of roots are roots
     if 0 < failed <= EXTENDED_MAX_FAILED:  # the failed paths again, every step in double-double (dgp.taut_extended)
-        res, failed = rescue_in_taut_extended(m, res, *(start or _generic(m)), target, options or default_options())
-        if failed and real_target:  # (cheap: before the re-runs)
-            res, failed = settle_on_conjugates(res, options or default_options())
+        res, failed = rescue_in_taut_extended(m, res, *(start or _generic(m)), target, options or default_options(),
+                                              real_target)  # (conjugates of its roots settle paths there: cheaper)
     # another route (gamma trick) when one or two paths failed, and the run with fewer failures is kept (each run is
     # a whole account).  Only a run with no failure completes the subproblem, and a new route seldom gives one: the
     # failures are mostly paths into the singular sets at infinity of the target itself, which every route meets.

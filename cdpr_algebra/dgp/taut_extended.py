@@ -9,9 +9,17 @@ over the generated :mod:`cdpr_algebra.generated.taut_equations_dd`) the same ste
 t = 0 in 1,800-2,600 steps (0.3-0.4 s a path); a double-precision run handed over to double-double where it fails
 (:func:`.homotopy.hybrid_tracker.hybrid_track`) did not: its last point, at t ~ 0.03, is too far off the path.
 
+Larger roots need more.  Two random robots' sets (seed 85's {1, 2, 4}, seed 13's {2, 3, 5, 6}) have conjugate pairs
+with |x| = 5.9e8 and 3.8e9.  With the run's predictor tolerance (3e-4 relative to 1 + max |x|, which lets the small
+unknowns lam ~ 0.01 move by far more than themselves once |x| ~ 1e8) their double-double tracks stop at t ~ 3e-3,
+and so does python-flint at 212 bits; with 3e-5 the first pair is reached (13,000-15,000 steps, 2 s a path), with
+3e-6 the second comes within t ~ 3e-7 of the end, where python-flint at 212 bits finishes in 4 steps.
+
 What.  :func:`rescue_in_taut_extended` tracks each failed path (at most ``MAX_PATHS``) along the straight segment from
-its start point, at most ``MAX_STEPS`` steps, with the step-size floor ``MIN_STEP``; an endpoint reached at t = 0
-(the tracker's last Newton updates there contracting to the floor of double-double) is a candidate root, and
+its start point, at most ``MAX_STEPS[0]`` steps, with the step-size floor ``MIN_STEP``; then, while at most
+``TIGHT_MAX_PATHS`` are left, with each predictor tolerance of ``TIGHTER`` in turn; a track that stops within
+``TAIL_T`` of t = 0 goes on there in python-flint (``TAIL_BITS``, at most ``TAIL_STEPS`` steps).  An endpoint reached
+at t = 0 (the tracker's last Newton updates there contracting to its precision's floor) is a candidate root, and
 :func:`.unheld_roots.settle_on_found_roots` keeps the candidates that no settled path holds, distinct from each other
 (the account of :mod:`.unheld_roots`: a regular root that no settled path holds is the limit of a failed path's branch,
 whatever route found it), ``retried = "taut_extended"``.  A kept endpoint is regular only as a claim: the subproblem is
@@ -28,51 +36,69 @@ import numpy as np
 from cdpr_algebra.homotopy.results import FAILURES, SUCCESS
 
 from .taut_system import fast_family
-from .unheld_roots import settle_on_found_roots
+from .unheld_roots import settle_on_conjugates, settle_on_found_roots
 
-__all__ = ["TAUT_EXTENDED", "MAX_PATHS", "MAX_STEPS", "MIN_STEP", "rescue_in_taut_extended"]
+__all__ = ["TAUT_EXTENDED", "MAX_PATHS", "MAX_STEPS", "MIN_STEP", "TIGHTER", "TIGHT_MAX_PATHS", "rescue_in_taut_extended"]
 
 TAUT_EXTENDED = "taut_extended"  # the ``retried`` of a path settled here
 MAX_PATHS = 8  # failed paths per run tracked here (a run with more is near a special robot: module doc of .solve)
-MAX_STEPS = 6000  # double-double steps per path (measured: 1,760 and 2,599 for the two paths above)
-MIN_STEP = 1e-14  # the step-size floor in s (the double tracker's 1e-13 stops those paths)
+MAX_STEPS = (6000, 20000, 20000)  # double-double steps per path in each round (measured: 1,760 .. 15,000, below)
+MIN_STEP = 1e-16  # the step-size floor in s (the double tracker's 1e-13 stops those paths)
+TIGHTER = (3e-5, 3e-6)  # predictor tolerances tried next, in turn, on the paths still failed ...
+TIGHT_MAX_PATHS = 2  # ... when at most this many are left
+TAIL_T = 1e-5  # a double-double track stopped within this of t = 0 goes on there in python-flint ...
+TAIL_BITS = 212  # ... at this precision, at most TAIL_STEPS steps
+TAIL_STEPS = 2000
 
 
-def rescue_in_taut_extended(m: int, res, start_parameters, start_solutions, target, options):
+def rescue_in_taut_extended(m: int, res, start_parameters, start_solutions, target, options, conjugates: bool = False):
     """(``res``, a run of the taut system of m cables from ``start_solutions`` at ``start_parameters`` to ``target``,
     with its failed paths settled on roots reached in double-double (module doc), the number of failed paths left).
     ``options``: the run's SolveOptions (its tracker's tolerances; its endgame's cluster tolerance decides
-    coincidence)."""
+    coincidence); ``conjugates``: the target is real, so first and after each round the conjugates of the run's roots
+    settle what they can (:func:`.unheld_roots.settle_on_conjugates`) before a costlier round."""
+    from cdpr_algebra.generated.taut_equations import taut_equations as taut_source
     from cdpr_algebra.generated.taut_equations_dd import taut_equations
+    from cdpr_algebra.homotopy.flint_tracker import FlintParameterHomotopy, flint_track
     from cdpr_algebra.homotopy.dd_tracker import CORRECTOR_FLOOR, DoubleDoubleParameterHomotopy
     from cdpr_algebra.homotopy.homotopies import ParameterHomotopy
     from cdpr_algebra.homotopy.refinement import relative_residual
 
-    failed = [i for i, p in enumerate(res.track.paths) if p.status in FAILURES]
-    if not failed:
-        return res, 0
     system = fast_family(m)
     homotopy = ParameterHomotopy(system, start_parameters, target)
     precise = DoubleDoubleParameterHomotopy.like(homotopy, taut_equations)
-    tracker = replace(options.tracker, min_step=MIN_STEP)
+    tail = FlintParameterHomotopy.like(homotopy, taut_source)
     X0 = np.asarray(start_solutions, dtype=complex)
-    found, steps = [], {}
-    for i in failed[:MAX_PATHS]:
-        seg = precise.track(X0[i], 1.0, 0.0, tracker, MAX_STEPS)  # path i starts at start solution i
-        steps[i] = seg.steps
-        if seg.status == SUCCESS and np.all(np.isfinite(seg.x)):
-            found.append(seg.x)
-    if found:
-        X = np.array(found)
-        F, J = system.evaluate_and_jacobian(X, target)
-        with np.errstate(all="ignore"):
-            residual = relative_residual(F, X)
-            condition = np.linalg.cond(J)
-        found = [dict(endpoint=x, residual=float(r), condition=float(c),
-                      accuracy=float(CORRECTOR_FLOOR * (1 + np.max(np.abs(x)))), retried=TAUT_EXTENDED)
-                 for x, r, c in zip(X, residual, condition)]
-    paths = list(res.track.paths)
-    for i, k in steps.items():
-        paths[i] = replace(paths[i], steps=paths[i].steps + k)
-    res = replace(res, track=replace(res.track, paths=tuple(paths)))
-    return settle_on_found_roots(res, found, options)
+    left = sum(1 for p in res.track.paths if p.status in FAILURES)
+    if left and conjugates:
+        res, left = settle_on_conjugates(res, options)
+    for k, ptol in enumerate((options.tracker.predictor_tol,) + TIGHTER):
+        if left == 0 or (k and left > TIGHT_MAX_PATHS):
+            break
+        tracker = replace(options.tracker, min_step=MIN_STEP, predictor_tol=ptol)
+        failed = [i for i, p in enumerate(res.track.paths) if p.status in FAILURES][:MAX_PATHS]
+        found, steps = [], {}
+        for i in failed:
+            seg = precise.track(X0[i], 1.0, 0.0, tracker, MAX_STEPS[k])  # path i starts at start solution i
+            steps[i] = seg.steps
+            if seg.status != SUCCESS and abs(seg.t) <= TAIL_T and np.all(np.isfinite(seg.x)):
+                seg = flint_track(tail, seg.x, seg.t, 0.0, tracker, TAIL_BITS, TAIL_STEPS)
+                steps[i] += seg.steps
+            if seg.status == SUCCESS and np.all(np.isfinite(seg.x)):
+                found.append(seg.x)
+        if found:
+            X = np.array(found)
+            F, J = system.evaluate_and_jacobian(X, target)
+            with np.errstate(all="ignore"):
+                residual = relative_residual(F, X)
+                condition = np.linalg.cond(J)
+            found = [dict(endpoint=x, residual=float(r), condition=float(c),
+                          accuracy=float(CORRECTOR_FLOOR * (1 + np.max(np.abs(x)))), retried=TAUT_EXTENDED)
+                     for x, r, c in zip(X, residual, condition)]
+        paths = list(res.track.paths)
+        for i, n in steps.items():
+            paths[i] = replace(paths[i], steps=paths[i].steps + n)
+        res, left = settle_on_found_roots(replace(res, track=replace(res.track, paths=tuple(paths))), found, options)
+        if left and conjugates:
+            res, left = settle_on_conjugates(res, options)
+    return res, left
