@@ -124,18 +124,10 @@ def settle_on_conjugates(result, options):
     """(``result``, a run to a target with real coefficients, with its failed paths settled on the conjugates of its
     non-real regular endpoints that no path holds, the number of failed paths left): module doc.  Each kept
     conjugate takes the residual, condition and accuracy of the endpoint it mirrors."""
-    paths, failed, held = _failed_and_held(result)
-    if not failed:
-        return result, 0
-    tol = options.endgame.cluster_tol
-    found = []
-    for p in paths:
-        z = np.conj(p.endpoint)
-        if p.status == SUCCESS and np.any(np.imag(p.endpoint) != 0) and not coincides_with_any(held, z, tol) \
-                and not coincides_with_any([f["endpoint"] for f in found], z, tol):
-            found.append(dict(endpoint=z, residual=p.residual, condition=p.condition, accuracy=p.accuracy,
-                              retried=CONJUGATE))
-    return _settled(result, paths, failed, found, options)
+    return settle_on_found_roots(result, [dict(endpoint=np.conj(p.endpoint), residual=p.residual, condition=p.condition,
+                                               accuracy=p.accuracy, retried=CONJUGATE)
+                                          for p in result.track.paths
+                                          if p.status == SUCCESS and np.any(np.imag(p.endpoint) != 0)], options)
 
 
 def settle_on_found_roots(result, found, options):
