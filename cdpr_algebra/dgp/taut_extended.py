@@ -17,7 +17,9 @@ and so does python-flint at 212 bits; with 3e-5 the first pair is reached (13,00
 
 What.  :func:`rescue_in_taut_extended` tracks each failed path (at most ``MAX_PATHS``) along the straight segment from
 its start point, at most ``MAX_STEPS[0]`` steps, with the step-size floor ``MIN_STEP``; then, while at most
-``TIGHT_MAX_PATHS`` are left, with each predictor tolerance of ``TIGHTER`` in turn; a track that stops within
+``TIGHT_MAX_PATHS`` are left, with each predictor tolerance of ``TIGHTER`` in turn, those whose last track stopped by
+``step_too_small`` (a track out of steps only crawls: measured, a 3-cable robot of ``tests/test_dgp_round_trips.py``,
+two paths at t ~ 0.03 with |x| ~ 1e8 still growing, 14 s of tighter tracks that reached nothing); a track that stops within
 ``TAIL_T`` of t = 0 goes on there in python-flint (``TAIL_BITS``, at most ``TAIL_STEPS`` steps).  An endpoint reached
 at t = 0 (the tracker's last Newton updates there contracting to its precision's floor) is a candidate root, and
 :func:`.unheld_roots.settle_on_found_roots` keeps the candidates that no settled path holds, distinct from each other
@@ -33,7 +35,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from cdpr_algebra.homotopy.results import FAILURES, SUCCESS
+from cdpr_algebra.homotopy.results import FAILURES, STEP_TOO_SMALL, SUCCESS
 
 from .taut_system import fast_family
 from .unheld_roots import settle_on_conjugates, settle_on_found_roots
@@ -70,6 +72,7 @@ def rescue_in_taut_extended(m: int, res, start_parameters, start_solutions, targ
     tail = FlintParameterHomotopy.like(homotopy, taut_source)
     X0 = np.asarray(start_solutions, dtype=complex)
     left = sum(1 for p in res.track.paths if p.status in FAILURES)
+    stopped = {}  # path -> how its last double-double track ended
     if left and conjugates:
         res, left = settle_on_conjugates(res, options)
     for k, ptol in enumerate((options.tracker.predictor_tol,) + TIGHTER):
@@ -77,10 +80,13 @@ def rescue_in_taut_extended(m: int, res, start_parameters, start_solutions, targ
             break
         tracker = replace(options.tracker, min_step=MIN_STEP, predictor_tol=ptol)
         failed = [i for i, p in enumerate(res.track.paths) if p.status in FAILURES][:MAX_PATHS]
+        if k:  # a tighter tolerance for the tracks its predecessor stopped (not those out of steps: they only crawl)
+            failed = [i for i in failed if stopped.get(i) == STEP_TOO_SMALL]
         found, steps = [], {}
         for i in failed:
             seg = precise.track(X0[i], 1.0, 0.0, tracker, MAX_STEPS[k])  # path i starts at start solution i
             steps[i] = seg.steps
+            stopped[i] = seg.status
             if seg.status != SUCCESS and abs(seg.t) <= TAIL_T and np.all(np.isfinite(seg.x)):
                 seg = flint_track(tail, seg.x, seg.t, 0.0, tracker, TAIL_BITS, TAIL_STEPS)
                 steps[i] += seg.steps
