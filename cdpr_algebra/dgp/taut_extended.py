@@ -40,7 +40,8 @@ from cdpr_algebra.homotopy.results import FAILURES, STEP_TOO_SMALL, SUCCESS
 from .taut_system import fast_family
 from .unheld_roots import settle_on_conjugates, settle_on_found_roots
 
-__all__ = ["TAUT_EXTENDED", "MAX_PATHS", "MAX_STEPS", "MIN_STEP", "TIGHTER", "TIGHT_MAX_PATHS", "rescue_in_taut_extended"]
+__all__ = ["TAUT_EXTENDED", "MAX_PATHS", "MAX_STEPS", "MIN_STEP", "TIGHTER", "TIGHT_MAX_PATHS", "TAIL_T", "TAIL_BITS",
+           "TAIL_STEPS", "rescue_in_taut_extended"]
 
 TAUT_EXTENDED = "taut_extended"  # the ``retried`` of a path settled here
 MAX_PATHS = 8  # failed paths per run tracked here (a run with more is near a special robot: module doc of .solve)
