@@ -21,8 +21,8 @@ its start point, at most ``MAX_STEPS[0]`` steps, with the step-size floor ``MIN_
 ``step_too_small`` (a track out of steps only crawls: measured, a 3-cable robot of ``tests/test_dgp_round_trips.py``,
 two paths at t ~ 0.03 with |x| ~ 1e8 still growing, 14 s of tighter tracks that reached nothing); a track that
 stops within ``TAIL_T`` of t = 0 goes on there in python-flint (``TAIL_BITS``, at most ``TAIL_STEPS`` steps).  An
-endpoint reached
-at t = 0 (the tracker's last Newton updates there contracting to its precision's floor) is a candidate root, and
+endpoint reached at t = 0 (the tracker's last Newton updates there contracting to its precision's floor) is a
+candidate root, and
 :func:`.unheld_roots.settle_on_found_roots` keeps the candidates that no settled path holds, distinct from each other
 (the account of :mod:`.unheld_roots`: a regular root that no settled path holds is the limit of a failed path's branch,
 whatever route found it), ``retried = "taut_extended"``.  A kept endpoint is regular only as a claim: the subproblem is
