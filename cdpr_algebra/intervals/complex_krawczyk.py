@@ -299,18 +299,25 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
                                max_move: float | None = None):
     """The Krawczyk test of :func:`certify_complex_roots` for one root, in complex ball arithmetic at ``prec`` bits
     (python-flint acb): for roots too ill-conditioned for double precision (condition numbers beyond ~1e8, where
-    the rounding of F(y) alone exceeds any box the operator can contract).  Newton's method (midpoint arithmetic: its
-    steps need no error bounds) runs until a step falls below 2^(-prec/2) of the scale, the next one being below the
-    precision (at most ``newton_steps``: from a double-precision endpoint of condition 1e11 it needs 20 and more).
+    the rounding of F(y) alone exceeds any box the operator can contract).
 
-    ``system(z, jacobian) -> (F, J)``: plain arithmetic over acb balls, constants exact (or balls); ``z`` (n,)
-    complex; ``scale`` (n,).  Newton's method at ``prec`` bits from z (midpoints), then epsilon-inflation as in
-    :func:`certify_complex_roots`; a root whose imaginary parts are within ``real_rtol`` is tested in a box
-    invariant under conjugation (a proof of realness).  ``max_move``: how far (relative to the scale) Newton's method
-    may move z, default half the box width limit; the box is built around the point it reaches, so a larger move
-    proves a root near z, not z to that accuracy (for a caller that counts distinct roots: z a root of a slightly
-    different system, e.g. one with rounded parameters).  Returns (proven, lo (2n,), hi (2n,), real, nonreal,
-    reason) with lo / hi outward-rounded doubles enclosing the root (real parts, then imaginary parts).
+    Newton's method in midpoint arithmetic (its steps need no error bounds) refines z first, as chord steps
+    y <- y - C F(y) with C = mid(J(z))^-1: from z within the Newton basin, the error after k steps is
+    ~ (kappa e)^k e (e the first error, kappa the root's condition), so each step costs one evaluation of F and a
+    product, not a Jacobian and a solve; a step that does not shrink 10-fold takes C at the current point (a Newton
+    step).  It stops when a step falls below 2^-80 of the scale (far below a double's resolution: the box's bounds are
+    doubles; 2^(8 - prec) below 88 bits) or stops shrinking, or after ``newton_steps`` steps, and that last step,
+    not taken, is the Krawczyk operator's y - C F(y) at its centre.  The Krawczyk test
+    (epsilon-inflation, as in :func:`certify_complex_roots`) uses the same C (any C gives an enclosure); when it
+    fails, it is tried again with C = mid(J(y))^-1 at the refined centre.
+
+    ``system(z, jacobian) -> (F, J)``: plain arithmetic over acb balls, constants exact (or balls), J None without
+    ``jacobian``; ``z`` (n,) complex; ``scale`` (n,).  A root whose imaginary parts are within ``real_rtol`` is
+    tested in a box invariant under conjugation (a proof of realness).  ``max_move``: how far (relative to the scale)
+    Newton's method may move z, default half the box width limit; the box is built around the point it reaches, so
+    a larger move proves a root near z, not z to that accuracy (for a caller that counts distinct roots: z a root of
+    a slightly different system, e.g. one with rounded parameters).  Returns (proven, lo (2n,), hi (2n,), real,
+    nonreal, reason) with lo / hi outward-rounded doubles enclosing the root (real parts, then imaginary parts).
     """
     from flint import acb, acb_mat, arb, ctx
 
@@ -325,61 +332,97 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
     nan = np.full(2 * n, np.nan)
     if not np.all(np.isfinite(z)):
         return False, nan, nan, False, False, "the root is not finite"
+    singular = (False, nan, nan, False, False, "the Jacobian is singular at the root (ball arithmetic)")
 
     def cplx(re, im):
         return acb(re, 0) if is_real else acb(re, im)
 
     with ctx.workprec(prec):
-        y = [cplx(float(v.real), float(v.imag)) for v in z]
-        singular = (False, nan, nan, False, False, "the Jacobian is singular at the root (ball arithmetic)")
         eye = acb_mat(n, n, [1 if i == k else 0 for i in range(n) for k in range(n)])
-        for _ in range(newton_steps):
-            F, J = system(y, True)
-            try:  # Newton's steps need no error bounds: midpoint arithmetic ("approx"), the test below is the proof
-                dy = acb_mat(J).mid().solve(acb_mat(n, 1, F).mid(), algorithm="approx")
+
+        def inverse(J):
+            """mid(J)^-1 (an approximate inverse, midpoints), None when J is singular or the result not finite."""
+            try:
+                C = acb_mat(J).mid().solve(eye, algorithm="approx").mid()
             except ZeroDivisionError:
+                return None
+            return C if all(C[i, k].is_finite() for i in range(n) for k in range(n)) else None
+
+        def newton_image(C, y, F):
+            """y - C F(y) in ball arithmetic (n x 1)."""
+            return acb_mat(n, 1, y) - C * acb_mat(n, 1, F)
+
+        def krawczyk(C, y, newton):
+            """Epsilon-inflation around y with the operator's C; (lo, hi) of the proven box or None."""
+            dev0 = np.array([float(abs(newton[k, 0] - y[k]).upper()) for k in range(n)])
+            r = np.maximum(4 * dev0, 2.0 ** (8 - prec) * s)
+            for _ in range(max_iter):
+                if np.any(r > rmax):
+                    return None
+                X = [acb(arb(y[k].real, r[k]), arb(y[k].imag, r[k])) for k in range(n)]
+                _, JX = system(X, True)
+                M = eye - C * acb_mat(JX)
+                K = newton + M * acb_mat(n, 1, [X[k] - y[k] for k in range(n)])
+                Kl = [K[k, 0] for k in range(n)]
+                if all(X[k].real.contains_interior(Kl[k].real) and X[k].imag.contains_interior(Kl[k].imag)
+                       for k in range(n)):
+                    parts = [Kl[k].real for k in range(n)] + [Kl[k].imag for k in range(n)]
+                    return np.array([lower(q) for q in parts]), np.array([upper(q) for q in parts])
+                dev = np.array([float(abs(Kl[k] - y[k]).upper()) if Kl[k].is_finite() else np.inf for k in range(n)])
+                r = np.maximum(2 * r, 1.5 * dev)
+            return None
+
+        y = [cplx(float(v.real), float(v.imag)) for v in z]
+        F, J = system(y, True)
+        C = inverse(J)
+        if C is None:
+            return singular
+        floor = 2.0 ** -min(prec - 8, 80)
+        last = np.inf
+        newton = None
+        for _ in range(newton_steps):
+            newton = newton_image(C, y, F)
+            dy = [(y[k] - newton[k, 0]).mid() for k in range(n)]
+            if not all(d.is_finite() for d in dy):
                 return singular
-            if not all(dy[k, 0].is_finite() for k in range(n)):
-                return singular
-            y = [(y[k] - dy[k, 0]).mid() for k in range(n)]
+            step = max(float(abs(dy[k]).upper()) / s[k] for k in range(n))
+            if step <= floor or step > 0.5 * last:  # converged, or at the precision's floor (or diverging)
+                break
+            if step > 0.1 * last:  # chord steps too slow: C at the current point (a Newton step)
+                F, J = system(y, True)
+                C = inverse(J)
+                if C is None:
+                    return singular
+                newton = newton_image(C, y, F)
+                dy = [(y[k] - newton[k, 0]).mid() for k in range(n)]
+                if not all(d.is_finite() for d in dy):
+                    return singular
+                step = max(float(abs(dy[k]).upper()) / s[k] for k in range(n))
+            y = [(y[k] - dy[k]).mid() for k in range(n)]
             if is_real:
                 y = [acb(v.real) for v in y]
-            step = max(float(abs(dy[k, 0]).upper()) / s[k] for k in range(n))
-            if step < 2.0 ** (-prec / 2):  # quadratic convergence: the next step is below the precision
-                break
+            last = step
+            F, _ = system(y, False)
+            newton = None
+        if newton is None:  # out of steps: the operator's y - C F(y) at the last point
+            newton = newton_image(C, y, F)
         yc = np.array([complex(v) for v in y])
         if np.any(np.abs(yc - z) > moved):
             limit = (f"the box width limit ({max_rel_width:.0e} relative)" if max_move is None
                      else f"{max_move:.0e} relative")
             return False, nan, nan, False, False, (
                 f"Newton's method moves the root by more than {limit}: it is not a root to that accuracy")
-        F, J = system(y, True)
-        try:  # C: any approximate inverse (the Krawczyk operator is an enclosure for every C)
-            C = acb_mat(J).mid().solve(eye, algorithm="approx").mid()
-        except ZeroDivisionError:
-            return singular
-        if not all(C[i, k].is_finite() for i in range(n) for k in range(n)):
-            return singular
-        newton = acb_mat(n, 1, y) - C * acb_mat(n, 1, F)
-        dev0 = np.array([float(abs(newton[k, 0] - y[k]).upper()) for k in range(n)])
-        r = np.maximum(4 * dev0, 2.0 ** (8 - prec) * s)
-        for _ in range(max_iter):
-            if np.any(r > rmax):
-                break
-            X = [acb(arb(y[k].real, r[k]), arb(y[k].imag, r[k])) for k in range(n)]
-            _, JX = system(X, True)
-            M = eye - C * acb_mat(JX)
-            K = newton + M * acb_mat(n, 1, [X[k] - y[k] for k in range(n)])
-            Kl = [K[k, 0] for k in range(n)]
-            if all(X[k].real.contains_interior(Kl[k].real) and X[k].imag.contains_interior(Kl[k].imag)
-                   for k in range(n)):
-                parts = [Kl[k].real for k in range(n)] + [Kl[k].imag for k in range(n)]
-                lo = np.array([lower(p) for p in parts])
-                hi = np.array([upper(p) for p in parts])
-                nonreal = (not is_real) and bool(np.any((lo[n:] > 0) | (hi[n:] < 0)))
-                return True, lo, hi, is_real, nonreal, ""
-            dev = np.array([float(abs(Kl[k] - y[k]).upper()) if Kl[k].is_finite() else np.inf for k in range(n)])
-            r = np.maximum(2 * r, 1.5 * dev)
+        box = krawczyk(C, y, newton)
+        if box is None:  # again with the inverse at the refined centre
+            F, J = system(y, True)
+            C = inverse(J)
+            if C is None:
+                return singular
+            box = krawczyk(C, y, newton_image(C, y, F))
+        if box is not None:
+            lo, hi = box
+            nonreal = (not is_real) and bool(np.any((lo[n:] > 0) | (hi[n:] < 0)))
+            return True, lo, hi, is_real, nonreal, ""
     return False, nan, nan, False, False, (
         f"Krawczyk test not satisfied in any box of relative width <= {max_rel_width:.0e}, also in {prec}-bit "
         f"ball arithmetic: the root is not proven to exist and be unique (ill-conditioned or singular)")
