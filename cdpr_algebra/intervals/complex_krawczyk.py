@@ -304,10 +304,11 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
     Newton's method in midpoint arithmetic (its steps need no error bounds) refines z first, as chord steps
     y <- y - C F(y) with C = mid(J(z))^-1: from z within the Newton basin, the error after k steps is
     ~ (kappa e)^k e (e the first error, kappa the root's condition), so each step costs one evaluation of F and a
-    product, not a Jacobian and a solve; a step that does not shrink 10-fold takes C at the current point (a Newton
-    step).  It stops when a step falls below 2^-80 of the scale (far below a double's resolution: the box's bounds are
-    doubles; 2^(8 - prec) below 88 bits) or stops shrinking, or after ``newton_steps`` steps, and that last step,
-    not taken, is the Krawczyk operator's y - C F(y) at its centre.  The Krawczyk test
+    product, not a Jacobian and a solve; where a chord step does not shrink 10-fold, C is taken at the current point
+    (a Newton step: huge ill-conditioned roots, kappa e ~ 1, converge only so, after a few steps that do not
+    shrink).  It stops when a step falls below 2^-min(prec / 2, 80) of the scale (far below a double's resolution:
+    the box's bounds are doubles), or after ``newton_steps`` steps, and that last step, not taken, is the Krawczyk
+    operator's y - C F(y) at its centre.  The Krawczyk test
     (epsilon-inflation, as in :func:`certify_complex_roots`) uses the same C (any C gives an enclosure); when it
     fails, it is tried again with C = mid(J(y))^-1 at the refined centre.
 
@@ -377,7 +378,7 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
         C = inverse(J)
         if C is None:
             return singular
-        floor = 2.0 ** -min(prec - 8, 80)
+        floor = 2.0 ** -min(prec // 2, 80)
         last = np.inf
         newton = None
         for _ in range(newton_steps):
@@ -386,9 +387,7 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
             if not all(d.is_finite() for d in dy):
                 return singular
             step = max(float(abs(dy[k]).upper()) / s[k] for k in range(n))
-            if step <= floor or step > 0.5 * last:  # converged, or at the precision's floor (or diverging)
-                break
-            if step > 0.1 * last:  # chord steps too slow: C at the current point (a Newton step)
+            if floor < step > 0.1 * last:  # chord steps too slow: C at the current point (a Newton step)
                 F, J = system(y, True)
                 C = inverse(J)
                 if C is None:
@@ -398,6 +397,8 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
                 if not all(d.is_finite() for d in dy):
                     return singular
                 step = max(float(abs(dy[k]).upper()) / s[k] for k in range(n))
+            if step <= floor:
+                break
             y = [(y[k] - dy[k]).mid() for k in range(n)]
             if is_real:
                 y = [acb(v.real) for v in y]
