@@ -42,3 +42,32 @@ def test_huge_conjugate_roots_are_reached_and_proven(cables, size):
         scale = np.max(np.abs(x)) ** 2
         assert np.max(np.abs(np.sum(s * s, axis=1) - rho ** 2)) <= 1e-9 * scale
         assert np.max(np.abs(R.T @ R - np.eye(3))) <= 1e-9 * scale
+
+
+NEAR_SIMILAR = Path(__file__).resolve().parent / "data" / "near_similar_squares.toml"
+
+
+@pytest.mark.parametrize("screen", [True, False])
+def test_a_track_ending_near_infinity_is_not_a_root(screen, monkeypatch):
+    """Near-similar squares (tests/data/near_similar_squares.toml), taut set {1, 2, 3}: one path, failed in double
+    precision, is tracked again in double-double and ends "converged" at t = 0 with |x| ~ 5e14, where the unknowns of
+    size 1 are not pinned down by an update test relative to 1 + max |x|.  It is not a root: Newton's method at 128
+    and 256 bits does not stay near it.  With the ball test of the candidates (dgp.taut_extended.proven_in_balls) the
+    path stays failed and no regular endpoint is refused by the certificates; without it, the path was kept as a
+    regular endpoint that the certificates refused (the subproblem incomplete with no failed path)."""
+    import cdpr_algebra.dgp.taut_extended as T
+
+    if not screen:
+        monkeypatch.setattr(T, "proven_in_balls", lambda x, p: True)
+    robot = load_robot(NEAR_SIMILAR)
+    sub, Z, proven = taut_set_roots(robot, robot.lengths, (0, 1, 2))
+    assert not sub.complete and sum(sub.outcomes.values()) == sub.paths == 156
+    refused = {k: v for k, v in sub.uncertified.items() if "not retried" not in k}
+    if screen:
+        assert sub.failed_paths == 1 and sub.retried.get(TAUT_EXTENDED, 0) == 0
+        assert not refused, sub.uncertified
+        # the regular endpoints are the 152 of an exactly similar robot: proven where tried, none larger than 1e3
+        assert sub.outcomes["regular"] == len(Z) == 152 and np.max(np.abs(Z)) < 1e3
+    else:
+        assert sub.failed_paths == 0 and sub.retried.get(TAUT_EXTENDED, 0) == 1
+        assert sum(refused.values()) == 1 and any("moves the root" in k for k in refused)

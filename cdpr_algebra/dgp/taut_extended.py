@@ -22,7 +22,13 @@ its start point, at most ``MAX_STEPS[0]`` steps, with the step-size floor ``MIN_
 two paths at t ~ 0.03 with |x| ~ 1e8 still growing, 14 s of tighter tracks that reached nothing); a track that
 stops within ``TAIL_T`` of t = 0 goes on there in python-flint (``TAIL_BITS``, at most ``TAIL_STEPS`` steps).  An
 endpoint reached at t = 0 (the tracker's last Newton updates there contracting to its precision's floor) is a
-candidate root, and
+candidate root; it is kept only where the ball Krawczyk test of the endpoint certificates proves a root within
+``BALL_MAX_MOVE`` of it, per unknown (:func:`proven_in_balls`).  Why: the trackers measure every update relative to
+1 + max |x|, so near a point at infinity with |x| ~ 5e14 a track can end "converged" at t = 0 while the unknowns of
+size 1 are anywhere (measured, thirty-seventh session: a square frame with a square plate, G on its axis, taut set
+{1, 2, 3}: such an endpoint, relative residual 0.12 at the rounding floor of its size, Newton quadratic in double
+precision; Newton at 128 bits moves it by more than half of itself; it was kept as a regular endpoint that the
+certificates then refused, the subproblem incomplete with no failed path).  Then
 :func:`.unheld_roots.settle_on_found_roots` keeps the candidates that no settled path holds, distinct from each other
 (the account of :mod:`.unheld_roots`: a regular root that no settled path holds is the limit of a failed path's branch,
 whatever route found it), ``retried = "taut_extended"``.  A kept endpoint is regular only as a claim: the subproblem is
@@ -41,7 +47,7 @@ from cdpr_algebra.homotopy.results import FAILURES, STEP_TOO_SMALL, SUCCESS
 from .taut_system import fast_family
 from .unheld_roots import settle_on_conjugates, settle_on_found_roots
 
-__all__ = ["TAUT_EXTENDED", "MAX_PATHS", "MAX_STEPS", "MIN_STEP", "TIGHTER", "TIGHT_MAX_PATHS", "TAIL_T", "TAIL_BITS",
+__all__ = ["TAUT_EXTENDED", "MAX_PATHS", "proven_in_balls", "MAX_STEPS", "MIN_STEP", "TIGHTER", "TIGHT_MAX_PATHS", "TAIL_T", "TAIL_BITS",
            "TAIL_STEPS", "rescue_in_taut_extended"]
 
 TAUT_EXTENDED = "taut_extended"  # the ``retried`` of a path settled here
@@ -53,6 +59,36 @@ TIGHT_MAX_PATHS = 2  # ... when at most this many are left
 TAIL_T = 1e-5  # a double-double track stopped within this of t = 0 goes on there in python-flint ...
 TAIL_BITS = 212  # ... at this precision, at most TAIL_STEPS steps
 TAIL_STEPS = 2000
+
+
+def proven_in_balls(x, p) -> bool:
+    """The candidate root x (normalized unknowns, unit scale) of the taut system with parameters p proven to be near a
+    root by the ball Krawczyk test of the endpoint certificates
+    (:func:`cdpr_algebra.intervals.complex_krawczyk.certify_complex_root_balls`, at 128 bits, else 256 (``BALL_PRECS``:
+    the 3.8e9 pair of the module doc needs 256 here), Newton's method allowed to move it by ``BALL_MAX_MOVE`` of
+    max(1, |x_k|) per unknown), p read exactly from its doubles (module doc: why a
+    track's end at t = 0 is not enough)."""
+    from flint import acb
+
+    from cdpr_algebra.certificates.endpoints import BALL_MAX_MOVE, BALL_PRECS
+    from cdpr_algebra.generated.taut_equations import taut_equations, taut_residual
+    from cdpr_algebra.intervals.complex_krawczyk import certify_complex_root_balls
+
+    x = np.asarray(x, dtype=complex)
+    n = len(x)
+    P = [acb(float(v.real), float(v.imag)) for v in np.asarray(p, dtype=complex)]
+
+    def system(y, jacobian):
+        F = np.zeros(n, dtype=object)
+        if not jacobian:
+            taut_residual(y, P, F)
+            return list(F), None
+        J = np.zeros((n, n), dtype=object)
+        taut_equations(y, P, None, F, J, None, False)
+        return list(F), [list(row) for row in J]
+
+    return any(certify_complex_root_balls(system, x, np.ones(n), prec=prec, max_move=BALL_MAX_MOVE)[0]
+               for prec in BALL_PRECS)
 
 
 def rescue_in_taut_extended(m: int, res, start_parameters, start_solutions, target, options, conjugates: bool = False):
@@ -102,7 +138,7 @@ def rescue_in_taut_extended(m: int, res, start_parameters, start_solutions, targ
                 condition = np.linalg.cond(J)
             found = [dict(endpoint=x, residual=float(r), condition=float(c),
                           accuracy=float(CORRECTOR_FLOOR * (1 + np.max(np.abs(x)))), retried=TAUT_EXTENDED)
-                     for x, r, c in zip(X, residual, condition)]
+                     for x, r, c in zip(X, residual, condition) if proven_in_balls(x, target)]
         paths = list(res.track.paths)
         for i, n in steps.items():
             paths[i] = replace(paths[i], steps=paths[i].steps + n)
