@@ -71,21 +71,19 @@ def proven_in_balls(x, p) -> bool:
     from flint import acb
 
     from cdpr_algebra.certificates.endpoints import BALL_MAX_MOVE, BALL_PRECS
-    from cdpr_algebra.generated.taut_equations import taut_equations, taut_residual
+    from cdpr_algebra.certificates.equilibria import taut_system
     from cdpr_algebra.intervals.complex_krawczyk import certify_complex_root_balls
 
     x = np.asarray(x, dtype=complex)
     n = len(x)
+    m = n - 12
     P = [acb(float(v.real), float(v.imag)) for v in np.asarray(p, dtype=complex)]
+    A = [P[3 * i:3 * i + 3] for i in range(m)]  # the parameter layout of model.taut_equations.taut_family
+    b = [P[4 * m + 3 * i:4 * m + 3 * i + 3] for i in range(m)]
+    g, f, rho2 = P[7 * m:7 * m + 3], P[7 * m + 3:7 * m + 6], P[3 * m:4 * m]
 
     def system(y, jacobian):
-        F = np.zeros(n, dtype=object)
-        if not jacobian:
-            taut_residual(y, P, F)
-            return list(F), None
-        J = np.zeros((n, n), dtype=object)
-        taut_equations(y, P, None, F, J, None, False)
-        return list(F), [list(row) for row in J]
+        return taut_system(y, A, b, g, f, rho2, jacobian=jacobian)
 
     return any(certify_complex_root_balls(system, x, np.ones(n), prec=prec, max_move=BALL_MAX_MOVE)[0]
                for prec in BALL_PRECS)
