@@ -47,8 +47,8 @@ from cdpr_algebra.homotopy.results import FAILURES, STEP_TOO_SMALL, SUCCESS
 from .taut_system import fast_family
 from .unheld_roots import settle_on_conjugates, settle_on_found_roots
 
-__all__ = ["TAUT_EXTENDED", "MAX_PATHS", "proven_in_balls", "MAX_STEPS", "MIN_STEP", "TIGHTER", "TIGHT_MAX_PATHS", "TAIL_T", "TAIL_BITS",
-           "TAIL_STEPS", "rescue_in_taut_extended"]
+__all__ = ["TAUT_EXTENDED", "MAX_PATHS", "MAX_STEPS", "MIN_STEP", "TIGHTER", "TIGHT_MAX_PATHS", "TAIL_T", "TAIL_BITS",
+           "TAIL_STEPS", "proven_in_balls", "rescue_in_taut_extended"]
 
 TAUT_EXTENDED = "taut_extended"  # the ``retried`` of a path settled here
 MAX_PATHS = 8  # failed paths per run tracked here (a run with more is near a special robot: module doc of .solve)
@@ -66,8 +66,8 @@ def proven_in_balls(x, p) -> bool:
     root by the ball Krawczyk test of the endpoint certificates
     (:func:`cdpr_algebra.intervals.complex_krawczyk.certify_complex_root_balls`, at 128 bits, else 256 (``BALL_PRECS``:
     the 3.8e9 pair of the module doc needs 256 here), Newton's method allowed to move it by ``BALL_MAX_MOVE`` of
-    max(1, |x_k|) per unknown), p read exactly from its doubles (module doc: why a
-    track's end at t = 0 is not enough)."""
+    max(1, |x_k|) per unknown), p read exactly from its doubles (module doc: why a track's end at t = 0 is not
+    enough)."""
     from flint import acb
 
     from cdpr_algebra.certificates.endpoints import BALL_MAX_MOVE, BALL_PRECS

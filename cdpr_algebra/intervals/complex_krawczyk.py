@@ -353,6 +353,14 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
             """y - C F(y) in ball arithmetic (n x 1)."""
             return acb_mat(n, 1, y) - C * acb_mat(n, 1, F)
 
+        def chord_step(C, y, F):
+            """(y - C F(y), the step's midpoints, its size relative to the scale); None when not finite."""
+            image = newton_image(C, y, F)
+            d = [(y[k] - image[k, 0]).mid() for k in range(n)]
+            if not all(v.is_finite() for v in d):
+                return None
+            return image, d, max(float(abs(d[k]).upper()) / s[k] for k in range(n))
+
         def krawczyk(C, y, newton):
             """Epsilon-inflation around y with the operator's C; (lo, hi) of the proven box or None."""
             dev0 = np.array([float(abs(newton[k, 0] - y[k]).upper()) for k in range(n)])
@@ -382,21 +390,14 @@ def certify_complex_root_balls(system, z, scale, prec: int = 256, max_rel_width:
         last = np.inf
         newton = None
         for _ in range(newton_steps):
-            newton = newton_image(C, y, F)
-            dy = [(y[k] - newton[k, 0]).mid() for k in range(n)]
-            if not all(d.is_finite() for d in dy):
-                return singular
-            step = max(float(abs(dy[k]).upper()) / s[k] for k in range(n))
-            if floor < step > 0.1 * last:  # chord steps too slow: C at the current point (a Newton step)
+            got = chord_step(C, y, F)
+            if got is not None and floor < got[2] > 0.1 * last:  # chord steps too slow: C at y (a Newton step)
                 F, J = system(y, True)
                 C = inverse(J)
-                if C is None:
-                    return singular
-                newton = newton_image(C, y, F)
-                dy = [(y[k] - newton[k, 0]).mid() for k in range(n)]
-                if not all(d.is_finite() for d in dy):
-                    return singular
-                step = max(float(abs(dy[k]).upper()) / s[k] for k in range(n))
+                got = None if C is None else chord_step(C, y, F)
+            if got is None:
+                return singular
+            newton, dy, step = got
             if step <= floor:
                 break
             y = [(y[k] - dy[k]).mid() for k in range(n)]
