@@ -180,3 +180,31 @@ def test_dgp_roots_proven_in_balls_are_enclosed_to_double_precision(monkeypatch)
                                 to_cable_frame(Z[bad], frame), scale, boxes, np.ones(len(bad), bool), frame, group)
     assert capped.proven.sum() == 6 and [capped.proven[group == g].sum() for g in (0, 1)] == [3, 3]
     assert all("more than 3 such roots in its taut set" in r for r, ok in zip(capped.reason, capped.proven) if not ok)
+
+
+# a double-precision endpoint of the DGP of tests/data/huge_root_6cables.toml, taut set {1, 3, 5} (world coordinates
+# (p, u, v, w, lam)): the input of the test below
+HUGE_ROOT = [(-9667324.524646249 + 7441406.129816798j), (-7443803.329249347 - 9668513.696382299j),
+             (-162391.15495623782 + 197290.62786348362j), (72751724.248739 + 17650356.943761144j),
+             (-17647984.081265073 + 72769034.93022367j), (1615421.5306135067 + 82250.2305219806j),
+             (-7185804.262631792 + 54233173.94060817j), (-54245568.76566881 - 7182738.068635891j),
+             (65462.971252875315 + 1180219.1226514531j), (-18173611.967310596 + 49213383.14004993j),
+             (-49225624.95376178 - 18173361.111614898j), (-187981.0778455026 + 1117822.3158931886j),
+             (-0.0018815748487477457 - 0.002113351709200178j), (0.0014057843983488433 + 0.0033483587924911878j),
+             (0.0003991701905537571 - 0.0012314297656117884j)]
+
+
+def test_a_huge_ill_conditioned_root_is_proven_in_ball_arithmetic():
+    """A root with |x| ~ 7.5e7 and condition ~1e18 in double precision, and its conjugate: double-precision intervals
+    cannot prove them; in ball arithmetic Newton's first steps from the double-precision point do not shrink (relative
+    8.0e-16, 8.9e-16, then 6.8e-15 at 128 bits), so a refinement that stopped when a step did not halve built the box
+    around an unrefined point and proved neither (thirty-seventh session, d5a60f5).  Both proven, non-real, in
+    disjoint boxes."""
+    from cdpr_algebra import load_robot
+    from cdpr_algebra.certificates.endpoints import certify_endpoints
+
+    robot = load_robot(ROOT / "tests" / "data" / "huge_root_6cables.toml")
+    z = np.array(HUGE_ROOT)
+    [(boxes, meeting)] = certify_endpoints(robot, robot.lengths, [((0, 2, 4), np.array([z, z.conj()]))])
+    assert boxes.proven.all(), boxes.reason
+    assert boxes.nonreal.all() and not meeting.any()
