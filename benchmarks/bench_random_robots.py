@@ -1,6 +1,6 @@
 """The whole DGP on random robots: how often is it complete, how long does it take.  Run by hand:
 
-    python -m benchmarks.bench_random_robots --seeds 0 40 [--jobs 1] [--json] [--designed]
+    python -m benchmarks.bench_random_robots --seeds 0 40 [--jobs 1] [--json] [--designed] [--write DIR]
 
 Robot ``seed``: 3..6 cables (numpy's ``default_rng(seed)``); three kinds of frames in turn (seed mod 3: exit points at
 a height of 4.5-5.5 m over a 10 m square, anywhere in an 8 m cube, on a circle of radius 4 m at heights 3-5 m),
@@ -13,6 +13,9 @@ robot (complete or not, outcomes, admissible equilibria, incomplete sets, second
 platform polygon, similar to it or not, G on the axis or off it, every coordinate printed to 6 decimals as a robot
 file would hold it.  Symmetry and similarity make taut sets special members of their families (limits at infinity,
 huge roots); this is where the DGP is weakest (README, "Known limit").
+
+``--write DIR``: write the robots as robot files (``DIR/random<seed>.json``, ``DIR/designed<seed>.json``) for
+``cdpr`` and stop, e.g. ``cdpr dgp DIR/designed1.json --settle``.
 """
 
 from __future__ import annotations
@@ -88,7 +91,16 @@ def main(argv=None) -> int:
     ap.add_argument("--jobs", type=int, default=None)
     ap.add_argument("--json", action="store_true", help="one JSON object per robot")
     ap.add_argument("--designed", action="store_true", help="the designed robots (designed_robot) instead")
+    ap.add_argument("--write", type=Path, default=None, metavar="DIR", help="write the robot files to DIR and stop")
     args = ap.parse_args(argv)
+    if args.write is not None:
+        args.write.mkdir(parents=True, exist_ok=True)
+        for seed in range(*args.seeds):
+            robot = designed_robot(seed) if args.designed else random_robot(seed)
+            path = args.write / f"{'designed' if args.designed else 'random'}{seed}.json"
+            path.write_text(json.dumps(robot.to_dict(), indent=1) + "\n")
+            print(path)
+        return 0
     times, incomplete = [], []
     for seed in range(*args.seeds):
         robot = designed_robot(seed) if args.designed else random_robot(seed)
