@@ -88,13 +88,23 @@ def taut_system(x, A, b, g, f, rho2=None, jacobian: bool = True):
     ``jacobian=False`` returns (F, None).
     """
     m = len(A)
+    if rho2 is not None:
+        return parameter_taut_system(x, _parameters(A, b, g, f, rho2), jacobian)
     n = 12 + m
     F, J = _evaluate(list(x), _parameters(A, b, g, f, rho2), n, jacobian)
-    rows = range(n) if rho2 is not None else [r for r in range(n) if not 6 <= r < 6 + m]
+    rows = [r for r in range(n) if not 6 <= r < 6 + m]
     Fl = [F[r] for r in rows]
     if not jacobian:
         return Fl, None
     return Fl, [list(J[r]) for r in rows]
+
+
+def parameter_taut_system(x, p, jacobian: bool = True):
+    """:func:`taut_system` (every row) at the family's parameter vector p = (A_i, rho_i^2, b'_i, g', Q d) of
+    :func:`cdpr_algebra.model.taut_equations.taut_family`, entries in any plain arithmetic (e.g. acb balls)."""
+    n = len(x)
+    F, J = _evaluate(list(x), list(p), n, jacobian)
+    return list(F), None if not jacobian else [list(row) for row in J]
 
 
 def _parameters(A, b, g, f, rho2=None):

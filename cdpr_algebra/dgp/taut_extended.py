@@ -71,21 +71,16 @@ def proven_in_balls(x, p) -> bool:
     from flint import acb
 
     from cdpr_algebra.certificates.endpoints import BALL_MAX_MOVE, BALL_PRECS
-    from cdpr_algebra.certificates.equilibria import taut_system
+    from cdpr_algebra.certificates.equilibria import parameter_taut_system
     from cdpr_algebra.intervals.complex_krawczyk import certify_complex_root_balls
 
     x = np.asarray(x, dtype=complex)
-    n = len(x)
-    m = n - 12
     P = [acb(float(v.real), float(v.imag)) for v in np.asarray(p, dtype=complex)]
-    A = [P[3 * i:3 * i + 3] for i in range(m)]  # the parameter layout of model.taut_equations.taut_family
-    b = [P[4 * m + 3 * i:4 * m + 3 * i + 3] for i in range(m)]
-    g, f, rho2 = P[7 * m:7 * m + 3], P[7 * m + 3:7 * m + 6], P[3 * m:4 * m]
 
     def system(y, jacobian):
-        return taut_system(y, A, b, g, f, rho2, jacobian=jacobian)
+        return parameter_taut_system(y, P, jacobian)
 
-    return any(certify_complex_root_balls(system, x, np.ones(n), prec=prec, max_move=BALL_MAX_MOVE)[0]
+    return any(certify_complex_root_balls(system, x, np.ones(len(x)), prec=prec, max_move=BALL_MAX_MOVE)[0]
                for prec in BALL_PRECS)
 
 
