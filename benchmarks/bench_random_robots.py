@@ -32,10 +32,20 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from cdpr_algebra import Robot, solve_dgp  # noqa: E402
 
 
-def random_robot(seed: int) -> Robot:
-    """The robot ``seed`` of the module doc."""
+def pose_lengths(rng, base, platform, spin: float, slack: float) -> np.ndarray:
+    """Cable lengths of a random pose (position within 1 m of the origin, 0 to 2 m up; rotation vector ~ ``spin``
+    rad), half of the cables lengthened by up to ``slack`` (slack cables)."""
     from scipy.spatial.transform import Rotation
 
+    n = len(base)
+    position = np.r_[rng.uniform(-1, 1, 2), rng.uniform(0, 2)]
+    R = Rotation.from_rotvec(rng.normal(size=3) * spin).as_matrix()
+    d = np.linalg.norm(base - (position + platform @ R.T), axis=1)
+    return d * (1 + rng.uniform(0, slack, n) * (rng.uniform(size=n) < 0.5))
+
+
+def random_robot(seed: int) -> Robot:
+    """The robot ``seed`` of the module doc."""
     rng = np.random.default_rng(seed)
     n = int(rng.integers(3, 7))
     kind = seed % 3
@@ -49,10 +59,7 @@ def random_robot(seed: int) -> Robot:
         base = np.c_[4 * np.cos(a), 4 * np.sin(a), rng.uniform(3, 5, n)]
     platform = rng.uniform(-0.5, 0.5, (n, 3)) * [1, 1, 0.5]
     com = rng.uniform(-0.2, 0.2, 3) - [0, 0, 0.3 * rng.uniform()]
-    position = np.r_[rng.uniform(-1, 1, 2), rng.uniform(0, 2)]
-    R = Rotation.from_rotvec(rng.normal(size=3) * 0.3).as_matrix()
-    d = np.linalg.norm(base - (position + platform @ R.T), axis=1)
-    lengths = d * (1 + rng.uniform(0, 0.08, n) * (rng.uniform(size=n) < 0.5))
+    lengths = pose_lengths(rng, base, platform, 0.3, 0.08)
     return Robot(base=base, platform=platform, com=com, load=1.0, lengths=lengths, name=f"random{seed}")
 
 
@@ -64,8 +71,6 @@ def designed_robot(seed: int) -> Robot:
     of 5 m; the platform a k-gon of radius 0.5 m, ``DESIGNS[(seed // 4) % 4]``; G 0.3 m below the platform (on its
     axis except in the last design); lengths those of a random pose (``default_rng(seed)``), some cables slack by up
     to 5 %; every number rounded to 6 decimals."""
-    from scipy.spatial.transform import Rotation
-
     rng = np.random.default_rng(seed)
     k = 3 + seed % 4
     design = (seed // 4) % 4
@@ -76,11 +81,8 @@ def designed_robot(seed: int) -> Robot:
     if design == 2:
         platform[:, 0] *= 1.2
     com = np.array([0.05, -0.03, -0.3]) if design == 3 else np.array([0.0, 0.0, -0.3])
-    position = np.r_[rng.uniform(-1, 1, 2), rng.uniform(0, 2)]
-    R = Rotation.from_rotvec(rng.normal(size=3) * 0.2).as_matrix()
     base, platform = base.round(6), platform.round(6)
-    d = np.linalg.norm(base - (position + platform @ R.T), axis=1)
-    lengths = (d * (1 + rng.uniform(0, 0.05, k) * (rng.uniform(size=k) < 0.5))).round(6)
+    lengths = pose_lengths(rng, base, platform, 0.2, 0.05).round(6)
     return Robot(base=base, platform=platform, com=com, load=1.0, lengths=lengths,
                  name=f"designed{seed} ({k} cables, {DESIGNS[design]})")
 
