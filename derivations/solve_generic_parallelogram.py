@@ -1,8 +1,13 @@
-"""Compute, certify and store the generic solution set of the 4-cable taut system for centred parallelograms.
+"""Compute, certify and store the generic solution set of the 4-cable taut system for two parallelograms.
 
 Re-runnable, NOT a ``derive_*.py`` (monodromy and the trace test are randomized and take minutes):
 
     python derivations/solve_generic_parallelogram.py            # writes cdpr_algebra/data/parallelogram_generic_m4.json
+    python derivations/solve_generic_parallelogram.py --kind off_centre   # parallelogram_offcentre_generic_m4.json
+
+``--kind off_centre`` (G not at the centre of the platform anchors' parallelogram, g' free): the same method and
+relations without g' = 0 (:mod:`cdpr_algebra.dgp.parallelogram`); the seed point's G is (0.03, -0.02, -0.15) plus
+the noise.  Its record is in the file's ``meta``.  The rest of this text is about the centred kind.
 
 Why.  When the four exit points A_1 .. A_4 of a taut set are a parallelogram (A_1 + A_3 = A_2 + A_4) and the four
 platform anchors are a parallelogram centred on the centre of mass (b'_1 + b'_3 = b'_2 + b'_4 = 2 g'), in the
@@ -55,7 +60,7 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "derivations"))
 
-from cdpr_algebra.dgp.parallelogram import (PARALLELOGRAM_M, fixed_parameters,  # noqa: E402
+from cdpr_algebra.dgp.parallelogram import (KINDS, PARALLELOGRAM_M, fixed_parameters,  # noqa: E402
                                             parallelogram_path, parallelogram_relations)
 from cdpr_algebra.dgp.solve import fast_family  # noqa: E402
 from cdpr_algebra.homotopy.monodromy import (MonodromyOptions, monodromy_solve, save_instance,  # noqa: E402
@@ -68,32 +73,34 @@ from solve_generic_rod import (extra_loop_check, monodromy_arguments, phc_agrees
                                trace_record)
 
 M = PARALLELOGRAM_M
-PATH = parallelogram_path()
+OFF_CENTRE_G = (0.03, -0.02, -0.15)
 
 
-def rectangle_robot(m: int = M) -> np.ndarray:
+def rectangle_robot(m: int = M, kind: str = "centred") -> np.ndarray:
     """Parameters of a unit-size robot in the subfamily: exit points (+-0.5, +-0.35, 0) of a rectangle, a plate
-    (+-0.12, +-0.08, 0) with G at its centre, in the same order, cables of length 0.7, load 1 along -z."""
+    (+-0.12, +-0.08, 0) with G at its centre (``OFF_CENTRE_G`` for the off-centre kind), in the same order, cables of
+    length 0.7, load 1 along -z."""
     A = np.array([[-0.5, -0.35, 0.0], [0.5, -0.35, 0.0], [0.5, 0.35, 0.0], [-0.5, 0.35, 0.0]])
     b = np.array([[-0.12, -0.08, 0.0], [0.12, -0.08, 0.0], [0.12, 0.08, 0.0], [-0.12, 0.08, 0.0]])
-    return np.concatenate([A.ravel(), np.full(m, 0.7 ** 2), b.ravel(), np.zeros(3), [0.0, 0.0, -1.0]])
+    g = np.zeros(3) if kind == "centred" else np.array(OFF_CENTRE_G)
+    return np.concatenate([A.ravel(), np.full(m, 0.7 ** 2), b.ravel(), g, [0.0, 0.0, -1.0]])
 
 
-def rectangle_member(rng, noise: float = 0.3) -> np.ndarray:
+def rectangle_member(rng, noise: float = 0.3, kind: str = "centred") -> np.ndarray:
     """:func:`rectangle_robot` plus relative complex noise inside the subfamily: a random complex member."""
-    p = rectangle_robot()
+    p = rectangle_robot(kind=kind)
     z = noise * (np.abs(p) + 0.1) * (rng.normal(size=p.size) + 1j * rng.normal(size=p.size))
-    return subfamily_point(p, z, fixed_parameters(), parallelogram_relations())
+    return subfamily_point(p, z, fixed_parameters(kind=kind), parallelogram_relations())
 
 
 def solve_generic(seed: int = 1, no_progress: int = 8, extra: int = 3, noise: float = 0.3, verbose: bool = True,
-                  eps: float | None = None, coordinates=POSE):
+                  eps: float | None = None, coordinates=POSE, kind: str = "centred"):
     fam = fast_family(M)
-    fixed, rel = fixed_parameters(), parallelogram_relations()
+    fixed, rel = fixed_parameters(kind=kind), parallelogram_relations()
     rng = np.random.default_rng(seed)
     x0 = encode(0.3 * (rng.normal(size=3) + 1j * rng.normal(size=3)), complex_rotation(rng),
                 rng.normal(size=M) + 1j * rng.normal(size=M))
-    guess = rectangle_member(rng, noise)
+    guess = rectangle_member(rng, noise, kind)
     t0 = time.perf_counter()
     res = monodromy_solve(fam, seed=seed, x0=x0, p_guess=guess,
                           options=MonodromyOptions(max_loops_no_progress=no_progress, max_loops=120,
@@ -104,14 +111,17 @@ def solve_generic(seed: int = 1, no_progress: int = 8, extra: int = 3, noise: fl
     F, J = fam.evaluate_and_jacobian(X, res.parameters)
     meta = {"m": M, "subfamily": "exit points and platform anchors parallelograms with the same diagonals (cables 1, 3 "
                                  "and 2, 4), the anchors' centred on G: A_1 + A_3 = A_2 + A_4 = 0, b'_1 + b'_3 = "
-                                 "b'_2 + b'_4 = 0, g' = 0",
+                                 "b'_2 + b'_4 = 0, g' = 0" if kind == "centred" else
+                         "exit points and platform anchors parallelograms with the same diagonals (cables 1, 3 and 2, "
+                         "4), G anywhere: A_1 + A_3 = A_2 + A_4 = 0, b'_1 + b'_3 = b'_2 + b'_4 = 0", "kind": kind,
             "fixed_parameters": [int(k) for k in fixed], "parameter_relations": [list(map(list, r)) for r in rel],
             "monodromy": res.to_dict(),
             "check": {"extra_loops": check.loops, "paths_tracked": check.paths_tracked, "new_solutions": new,
                       "seconds": check.seconds},
             "distinct": distinct, "max_residual": float(np.max(np.abs(F))),
             "max_jacobian_condition": float(np.max(np.linalg.cond(J))),
-            "max_norm": float(np.max(np.abs(X))), "start_point": {"base": "rectangle_robot", "noise": noise},
+            "max_norm": float(np.max(np.abs(X))), "start_point": {"base": "rectangle_robot", "noise": noise,
+                                                                  "g": list(rectangle_robot(kind=kind)[28:31])},
             "scale": "unit-size robot: base centred at the origin, lengths / robot size, load Q d with Q = 1"}
     t1 = time.perf_counter()
     o = replace(trace_options(), fixed_parameters=fixed, parameter_relations=rel, polish_condition=0.0)
@@ -128,14 +138,14 @@ def solve_generic(seed: int = 1, no_progress: int = 8, extra: int = 3, noise: fl
     return res.parameters, X, meta
 
 
-def run_phc(seed: int = 9, timeout: float = 7200, verbose: bool = True) -> dict:
+def run_phc(seed: int = 9, timeout: float = 7200, verbose: bool = True, kind: str = "centred") -> dict:
     """PHCpack's blackbox count on a random complex member of the subfamily (the rectangle robot plus complex noise
     inside it), matched with the stored set moved there (:func:`solve_generic_collinear.phc_count_at`)."""
     from cdpr_algebra.homotopy.monodromy import load_instance
     from solve_generic_collinear import phc_count_at
 
-    p0, X0, _ = load_instance(PATH, taut_family(M))
-    p = rectangle_member(np.random.default_rng(seed))
+    p0, X0, _ = load_instance(parallelogram_path(kind), taut_family(M))
+    p = rectangle_member(np.random.default_rng(seed), kind=kind)
     return phc_count_at(M, p0, X0, p, seed, timeout, "parallelogram_instance", verbose)
 
 
@@ -149,20 +159,22 @@ def main(argv=None) -> int:
     ap.add_argument("--keep", type=Path, default=None, metavar="FILE",
                     help="also write the set and its record to FILE, stored or not (its W10 for a later trace)")
     ap.add_argument("--phc", action="store_true", help="record PHCpack's count next to the stored set (only)")
+    ap.add_argument("--kind", choices=KINDS, default="centred", help="the subfamily (default: centred)")
     args = ap.parse_args(argv)
+    path = parallelogram_path(args.kind)
     if args.phc:
         from cdpr_algebra.homotopy.monodromy import load_instance
 
-        rec = run_phc(7 + args.seed)
-        p0, X0, data = load_instance(PATH, taut_family(M))  # read after the run: the record is added to the latest
-        save_instance(PATH, taut_family(M), p0, X0, **{**data["meta"], "phc": rec})
+        rec = run_phc(7 + args.seed, kind=args.kind)
+        p0, X0, data = load_instance(path, taut_family(M))  # read after the run: the record is added to the latest
+        save_instance(path, taut_family(M), p0, X0, **{**data["meta"], "phc": rec})
         return 0 if phc_agrees(rec, len(X0)) else 1
     params, X, meta = solve_generic(seed=args.seed, no_progress=args.no_progress, extra=args.extra, noise=args.noise,
-                                    eps=args.eps, coordinates=None if args.all_coordinates else POSE)
+                                    eps=args.eps, coordinates=None if args.all_coordinates else POSE, kind=args.kind)
     print(f"m = {M}: largest solution norm {meta['max_norm']:.1e}", flush=True)
     if args.keep is not None:
         save_instance(args.keep, taut_family(M), params, X, **meta)
-    return store_if_certified(PATH, taut_family(M), params, X, meta)
+    return store_if_certified(path, taut_family(M), params, X, meta)
 
 
 if __name__ == "__main__":

@@ -15,8 +15,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from cdpr_algebra.dgp.parallelogram import (fixed_parameters, parallelogram_order, parallelogram_path,
-                                            parallelogram_relations)
+from cdpr_algebra.dgp.parallelogram import (KINDS, fixed_parameters, parallelogram_kind, parallelogram_order,
+                                            parallelogram_path, parallelogram_relations)
 from cdpr_algebra.dgp.solve import _solve_taut_set, _with_endpoint_certificates, dgp, solve_taut_set
 from cdpr_algebra.model.robot import Robot, load_robot
 
@@ -49,15 +49,16 @@ def _parallelograms(perm=(0, 1, 2, 3)):
     return Robot(A[idx], b[idx], np.zeros(3), 1.0, np.array([0.0, 0.0, -1.0]), rho[idx], name="parallelograms")
 
 
-def test_stored_subfamily_set_solves_its_equations_and_passed_the_trace_test():
+@pytest.mark.parametrize("kind", KINDS)
+def test_stored_subfamily_set_solves_its_equations_and_passed_the_trace_test(kind):
     from cdpr_algebra.dgp.taut_system import fast_family
     from cdpr_algebra.homotopy.monodromy import load_instance
     from cdpr_algebra.model.taut_equations import taut_family
 
-    p, X, data = load_instance(parallelogram_path(), taut_family(4))  # hash of the sympy system checked
+    p, X, data = load_instance(parallelogram_path(kind), taut_family(4))  # hash of the sympy system checked
     for rel in parallelogram_relations():  # exactly in the subfamily
         assert sum(c * p[i] for i, c in rel) == 0
-    assert np.all(p[list(fixed_parameters())] == 0)
+    assert np.all(p[list(fixed_parameters(kind=kind))] == 0) and (kind == "centred" or np.any(p[28:31] != 0))
     F, J = fast_family(4).evaluate_and_jacobian(X, p)
     assert np.max(np.abs(F)) <= 1e-8 * (1 + np.max(np.abs(X)))
     assert np.max(np.linalg.cond(J)) < 1e10
@@ -75,19 +76,29 @@ def test_stored_subfamily_set_solves_its_equations_and_passed_the_trace_test():
     phc = meta["phc"]
     assert phc["status"] == "finished" and phc["regular"] <= phc["mixed_volume"]
     assert phc["phc_distinct"] == phc["phc_matched"] == phc["stored_matched"] == phc["stored_moved_distinct"] == len(X)
-    # fewer than the generic family's 216: the others leave to infinity in the subfamily
-    assert len(X) == 152 < len(load_instance(ROOT / "cdpr_algebra" / "data" / "dgp_generic_m4.json",
-                                             check_hash=False)[1])
+    # fewer than the generic family's 216: the others leave to infinity in the subfamily (the off-centre count is
+    # also the generic route's certified roots of examples/symmetric_4cables.toml, tests/test_dgp_symmetric.py)
+    assert len(X) == {"centred": 152, "off_centre": 184}[kind] < len(load_instance(
+        ROOT / "cdpr_algebra" / "data" / "dgp_generic_m4.json", taut_family(4), check_hash=False)[1])
 
 
-def test_which_taut_sets_are_centred_parallelograms():
+def test_which_taut_sets_are_parallelograms_and_of_which_kind():
     flat = _flat()
     assert parallelogram_order(flat, (0, 1, 2, 3)) == (0, 1, 2, 3)
-    assert parallelogram_order(_parallelograms((0, 2, 1, 3)), (0, 1, 2, 3)) == (0, 2, 1, 3)  # diagonals 1, 2 and 3, 4
+    assert parallelogram_kind(flat, (0, 1, 2, 3)) == "centred"
+    skew = _parallelograms((0, 2, 1, 3))
+    assert parallelogram_order(skew, (0, 1, 2, 3)) == (0, 2, 1, 3)  # diagonals 1, 2 and 3, 4
+    assert parallelogram_kind(skew, (0, 2, 1, 3)) == "centred"
     assert parallelogram_order(flat, (0, 1, 2)) is None  # three cables
-    # G off the plate's centre (the file's, 0.2 below it; or moved in the plate by 1e-12): the generic route
-    assert parallelogram_order(load_robot(ROOT / "examples" / "symmetric_4cables.toml"), (0, 1, 2, 3)) is None
-    assert parallelogram_order(replace(flat, com=np.array([1e-12, 0.0, 0.0])), (0, 1, 2, 3)) is None
+    # G off the plate's centre (the file's, 0.2 below it; or moved in the plate by 1e-12): the off-centre kind
+    sym = load_robot(ROOT / "examples" / "symmetric_4cables.toml")
+    assert parallelogram_order(sym, (0, 1, 2, 3)) == (0, 1, 2, 3)
+    assert parallelogram_kind(sym, (0, 1, 2, 3)) == "off_centre"
+    moved = replace(flat, com=np.array([1e-12, 0.0, 0.0]))
+    assert parallelogram_kind(moved, parallelogram_order(moved, (0, 1, 2, 3))) == "off_centre"
+    # one platform anchor off the parallelogram by 1e-12: not one
+    off = replace(flat, platform=flat.platform + np.array([[0.0, 0.0, 0.0]] * 3 + [[0.0, 1e-12, 0.0]]))
+    assert parallelogram_order(off, (0, 1, 2, 3)) is None
     # nearly parallelograms (seed 002's {1, 3, 5, 7}: B7 = -B3 within 5e-3, A a parallelogram within 1e-2): no
     assert parallelogram_order(load_robot(ROOT / "examples" / "seed002_8cables.toml"), (0, 2, 4, 6)) is None
 
@@ -131,7 +142,8 @@ def test_the_flat_plates_whole_dgp_is_complete():
     res = dgp(_flat(), jobs=1)
     assert res.complete and all(s.complete for s in res.subproblems)
     (sub,) = [s for s in res.subproblems if s.taut == (1, 2, 3, 4)]
-    assert sub.to_dict()["parallelogram"] == {"start": "parallelogram_generic", "diagonals": [[1, 3], [2, 4]]}
+    assert sub.to_dict()["parallelogram"] == {"start": "parallelogram_generic", "kind": "centred",
+                                              "diagonals": [[1, 3], [2, 4]]}
     from cdpr_algebra.dgp.solve import dgp_table
 
     assert "[1, 2, 3, 4]: exit points and platform anchors two parallelograms (diagonals 1-3 and 2-4)" in dgp_table(res, 4)

@@ -70,14 +70,30 @@ def test_tensions_growing_at_a_finite_pose_stay_undecided():
     assert _outcome(_at_infinity(10.0, 14.0)) == "endgame_failed"  # -0.24: not a power k / c, k >= 1
 
 
-def test_the_symmetric_robot_is_complete():
-    """The same taut set by the DGP: 184 regular roots, every one proven in a Krawczyk box, and 32 paths at infinity
-    (decided in Study parameters, the (g, lam) block unbounded) make the generic count 216."""
+def test_the_symmetric_robot_is_complete_by_both_routes():
+    """The same taut set by the DGP: its exit points and platform anchors are two rectangles with G 0.2 below the
+    plate's centre, so it is tracked from the off-centre parallelograms' generic set (dgp.parallelogram): 184 paths,
+    every one regular and proven in a Krawczyk box.  The generic route (``rods=False``, 216 paths) independently
+    finds the same: 184 regular roots, every one proven, the same points, and 32 paths at infinity (decided in Study
+    parameters, the (g, lam) block unbounded), which make its generic count 216."""
+    from cdpr_algebra.dgp.parallelogram import parallelogram_start
+
     robot = load_robot(ROOT / "examples" / "symmetric_4cables.toml")
     sub, sols = S.solve_taut_set(robot, robot.lengths, (0, 1, 2, 3))
-    assert sub.outcomes == {"regular": 184, "singular": 0, "at_infinity": 32, "failed": 0}, sub.outcomes
-    assert sub.complete and sub.certified == sub.finite == 184
+    assert sub.parallelogram == (1, 2, 3, 4) and sub.parallelogram_kind == "off_centre"
+    assert sub.outcomes == {"regular": 184, "singular": 0, "at_infinity": 0, "failed": 0}, sub.outcomes
+    assert sub.complete and sub.certified == sub.finite == sub.generic_count == 184
     assert len(sols) == 2 and all(s.certified for s in sols)
+    rho = np.asarray(robot.lengths)
+    gen, gsols, Zg = S._solve_taut_set(robot, rho, (0, 1, 2, 3), exclude=False, rods=False)
+    (gen,) = S._with_endpoint_certificates(robot, rho, [((0, 1, 2, 3), gen, Zg)])
+    assert gen.parallelogram is None and gen.generic_count == 216
+    assert gen.outcomes == {"regular": 184, "singular": 0, "at_infinity": 32, "failed": 0}, gen.outcomes
+    assert gen.complete and gen.certified == gen.finite == len(parallelogram_start("off_centre")[1])
+    _, _, Z = S._solve_taut_set(robot, rho, (0, 1, 2, 3), exclude=False)
+    d = np.max(np.abs(Zg[:, None, :] - Z[None, :, :]), axis=2)
+    assert np.all(np.min(d, axis=1) <= 1e-8 * (1 + np.max(np.abs(Z))))  # the same points
+    assert sorted(np.round([s.position[2] for s in gsols], 9)) == sorted(np.round([s.position[2] for s in sols], 9))
 
 
 def test_a_route_from_another_generic_instance_settles_the_crawling_path():

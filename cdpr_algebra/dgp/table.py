@@ -58,9 +58,9 @@ def dgp_table(result: DGPResult, n: int) -> str:
                          + (", the robot read in decimal" if s.collinear_anchors != BINARY else ""))
         if s.parallelogram is not None:
             a, b, c, d = s.parallelogram
+            where = "the anchors' centred on G" if s.parallelogram_kind == "centred" else "G off the anchors' centre"
             lines.append(f"  {list(s.taut)}: exit points and platform anchors two parallelograms (diagonals {a}-{c} and "
-                         f"{b}-{d}), the anchors' centred on G: tracked from that subfamily's generic set "
-                         f"({s.generic_count} paths)")
+                         f"{b}-{d}), {where}: tracked from that subfamily's generic set ({s.generic_count} paths)")
     for s in result.subproblems:
         if s.excluded is not None:
             continue
