@@ -7,7 +7,8 @@ Re-runnable, NOT a ``derive_*.py`` (monodromy and the trace test are randomized 
 
 ``--kind off_centre`` (G not at the centre of the platform anchors' parallelogram, g' free): the same method and
 relations without g' = 0 (:mod:`cdpr_algebra.dgp.parallelogram`); the seed point's G is (0.03, -0.02, -0.15) plus
-the noise.  Its record is in the file's ``meta``.  The rest of this text is about the centred kind.
+the noise.  ``--kind squares`` (two squares, G off their centre): the seed point's squares are those of
+:func:`square_robot`.  Their records are in the files' ``meta``.  The rest of this text is about the centred kind.
 
 Why.  When the four exit points A_1 .. A_4 of a taut set are a parallelogram (A_1 + A_3 = A_2 + A_4) and the four
 platform anchors are a parallelogram centred on the centre of mass (b'_1 + b'_3 = b'_2 + b'_4 = 2 g'), in the
@@ -82,27 +83,57 @@ def rectangle_robot(m: int = M, kind: str = "centred") -> np.ndarray:
     length 0.7, load 1 along -z."""
     A = np.array([[-0.5, -0.35, 0.0], [0.5, -0.35, 0.0], [0.5, 0.35, 0.0], [-0.5, 0.35, 0.0]])
     b = np.array([[-0.12, -0.08, 0.0], [0.12, -0.08, 0.0], [0.12, 0.08, 0.0], [-0.12, 0.08, 0.0]])
+    if kind.startswith("squares"):
+        return square_robot(m, kind)
     g = np.zeros(3) if kind == "centred" else np.array(OFF_CENTRE_G)
     return np.concatenate([A.ravel(), np.full(m, 0.7 ** 2), b.ravel(), g, [0.0, 0.0, -1.0]])
+
+
+def square_robot(m: int = M, kind: str = "squares") -> np.ndarray:
+    """Parameters of a unit-size robot with two squares, counter-clockwise about z: exit points a, Rot90 a, -a,
+    -Rot90 a with a = (0.5, 0.1, 0), platform anchors likewise with (0.12, 0.05, 0), G at ``OFF_CENTRE_G`` (for
+    ``squares_axis`` on the axis, (0, 0, -0.15)), cables of length 0.7, load 1 along -z."""
+    def square(x, y):
+        return np.array([[x, y, 0.0], [-y, x, 0.0], [-x, -y, 0.0], [y, -x, 0.0]])
+
+    g = (0.0, 0.0, OFF_CENTRE_G[2]) if kind == "squares_axis" else OFF_CENTRE_G
+    return np.concatenate([square(0.5, 0.1).ravel(), np.full(m, 0.7 ** 2), square(0.12, 0.05).ravel(),
+                           g, [0.0, 0.0, -1.0]])
 
 
 def rectangle_member(rng, noise: float = 0.3, kind: str = "centred") -> np.ndarray:
     """:func:`rectangle_robot` plus relative complex noise inside the subfamily: a random complex member."""
     p = rectangle_robot(kind=kind)
     z = noise * (np.abs(p) + 0.1) * (rng.normal(size=p.size) + 1j * rng.normal(size=p.size))
-    return subfamily_point(p, z, fixed_parameters(kind=kind), parallelogram_relations())
+    return subfamily_point(p, z, fixed_parameters(kind=kind), parallelogram_relations(kind=kind))
+
+
+def seed_from_squares(p, seed: int) -> np.ndarray:
+    """The finite regular roots at the member ``p`` of the squares-with-G-on-the-axis subfamily, tracked from the
+    stored squares set (its superfamily: G anywhere), a seed point for the monodromy there (its members have too few
+    free parameters, 9 for 10 equations, for :func:`seed_instance` to fit them to a random point)."""
+    from cdpr_algebra.dgp.parallelogram import parallelogram_start
+    from cdpr_algebra.homotopy.many_targets import solve_targets
+
+    p0, X0 = parallelogram_start("squares")
+    (res,) = solve_targets(fast_family(M), p0, X0, [p], seed=seed)
+    return np.array([s.x for s in res.solutions if not s.singular])
 
 
 def solve_generic(seed: int = 1, no_progress: int = 8, extra: int = 3, noise: float = 0.3, verbose: bool = True,
                   eps: float | None = None, coordinates=POSE, kind: str = "centred"):
     fam = fast_family(M)
-    fixed, rel = fixed_parameters(kind=kind), parallelogram_relations()
+    fixed, rel = fixed_parameters(kind=kind), parallelogram_relations(kind=kind)
     rng = np.random.default_rng(seed)
     x0 = encode(0.3 * (rng.normal(size=3) + 1j * rng.normal(size=3)), complex_rotation(rng),
                 rng.normal(size=M) + 1j * rng.normal(size=M))
     guess = rectangle_member(rng, noise, kind)
     t0 = time.perf_counter()
-    res = monodromy_solve(fam, seed=seed, x0=x0, p_guess=guess,
+    known = {}
+    if kind == "squares_axis":  # too few free parameters to fit a random point: one root moved from the squares set
+        known = dict(parameters=guess, solutions=seed_from_squares(guess, seed)[:1])
+        x0 = guess = None
+    res = monodromy_solve(fam, seed=seed, x0=x0, p_guess=guess, **known,
                           options=MonodromyOptions(max_loops_no_progress=no_progress, max_loops=120,
                                                    fixed_parameters=fixed, parameter_relations=rel))
     if verbose:
@@ -113,7 +144,10 @@ def solve_generic(seed: int = 1, no_progress: int = 8, extra: int = 3, noise: fl
                                  "and 2, 4), the anchors' centred on G: A_1 + A_3 = A_2 + A_4 = 0, b'_1 + b'_3 = "
                                  "b'_2 + b'_4 = 0, g' = 0" if kind == "centred" else
                          "exit points and platform anchors parallelograms with the same diagonals (cables 1, 3 and 2, "
-                         "4), G anywhere: A_1 + A_3 = A_2 + A_4 = 0, b'_1 + b'_3 = b'_2 + b'_4 = 0", "kind": kind,
+                         "4), G anywhere: A_1 + A_3 = A_2 + A_4 = 0, b'_1 + b'_3 = b'_2 + b'_4 = 0" + (
+                             "; both squares: A_2 = Rot90(A_1), b'_2 = Rot90(b'_1) about z, A_iz = b'_iz = 0, "
+                             "Q d = (0, 0, -1)" if kind.startswith("squares") else "") + (
+                             "; G on the axis: g'_x = g'_y = 0" if kind == "squares_axis" else ""), "kind": kind,
             "fixed_parameters": [int(k) for k in fixed], "parameter_relations": [list(map(list, r)) for r in rel],
             "monodromy": res.to_dict(),
             "check": {"extra_loops": check.loops, "paths_tracked": check.paths_tracked, "new_solutions": new,

@@ -89,6 +89,7 @@ EXPECTED = {
     "flat_plate_4cables": (4, 1.0, [0, 0, -1], True),
     "beam_4cables": (4, 1.0, [0, 0, -1], True),
     "similar_3cables": (3, 1.0, [0, 0, -1], True),
+    "square_4cables": (4, 1.0, [0, 0, -1], True),
 }
 
 

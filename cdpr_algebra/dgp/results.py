@@ -12,7 +12,11 @@ from cdpr_algebra.model.pose import angles_from_matrix
 from cdpr_algebra.model.rod_equations import BINARY
 from cdpr_algebra.report.jsonable import jsonable
 
-__all__ = ["DGPSolution", "DGPSubproblem"]
+__all__ = ["DGPSolution", "DGPSubproblem", "PARALLELOGRAM_STARTS"]
+
+# the JSON name of each parallelogram subfamily's stored generic set (dgp.parallelogram.KINDS)
+PARALLELOGRAM_STARTS = {"centred": "parallelogram_generic", "off_centre": "parallelogram_offcentre_generic",
+                        "squares": "parallelogram_squares_generic", "squares_axis": "parallelogram_squares_axis_generic"}
 
 
 @dataclass(frozen=True)
@@ -92,7 +96,7 @@ class DGPSubproblem:
     family: object = None  # positive_dimensional.Family: uncertified endpoints on positive-dimensional sets
     collinear_anchors: str | None = None  # tracked from the collinear-anchors subfamily: the robot's reading there
     parallelogram: tuple | None = None  # tracked from a parallelograms subfamily: the diagonals' order
-    parallelogram_kind: str | None = None  # that subfamily: "centred" or "off_centre" (dgp.parallelogram.KINDS)
+    parallelogram_kind: str | None = None  # that subfamily: "centred", "off_centre", .. (dgp.parallelogram.KINDS)
 
     @property
     def admissible_complete(self) -> bool:
@@ -131,6 +135,5 @@ class DGPSubproblem:
                 "collinear_anchors": None if self.collinear_anchors is None else
                 {"start": "collinear_generic", "reading": self.collinear_anchors},
                 "parallelogram": None if self.parallelogram is None else
-                {"start": "parallelogram_generic" if self.parallelogram_kind == "centred" else
-                 "parallelogram_offcentre_generic", "kind": self.parallelogram_kind,
+                {"start": PARALLELOGRAM_STARTS.get(self.parallelogram_kind), "kind": self.parallelogram_kind,
                  "diagonals": [list(self.parallelogram[0::2]), list(self.parallelogram[1::2])]}}

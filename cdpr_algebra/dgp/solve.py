@@ -130,8 +130,8 @@ from .positive_dimensional import families_of_endpoints
 from .rod import rod_geometry, solve_rod_taut_set
 from .other_start import other_generic_instance
 from .collinear_anchors import collinear_start, fixed_parameters, line_frame
-from .parallelogram import (centred_frame, parallelogram_kind, parallelogram_order, parallelogram_relations,
-                            parallelogram_start, subfamily_target)
+from .parallelogram import (centred_frame, flip_platform, flip_roots_back, parallelogram_kind, parallelogram_order,
+                            parallelogram_relations, parallelogram_start, subfamily_target)
 from .parallelogram import fixed_parameters as parallelogram_fixed
 from .tension_infinity import tension_infinity_undecided
 from .taut_extended import MAX_PATHS as EXTENDED_MAX_FAILED, rescue_in_taut_extended
@@ -515,6 +515,7 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     # of its diagonals (the roots' tensions are put back in the order of ``cables`` below)
     order = parallelogram_order(robot, cables) if rods and line is None and frame is None else None
     kind = None if order is None else parallelogram_kind(robot, order)
+    flip = kind is not None and kind.startswith("squares") and flip_platform(robot, order)
     cables_in, cables = cables, cables if order is None else order
     frame_c = None if order is None else centred_frame(robot, order)
     target, c, L, Rw, cb = normalized_problem(robot, rho, cables, frame_c)
@@ -522,8 +523,8 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     if frame is not None:  # the subfamily's own generic set, the line as the platform frame's x axis
         target, start, fixed = frame.target(target, m, cb, L), collinear_start(m), fixed_parameters(m)
     if order is not None:
-        target, start = subfamily_target(target, kind), parallelogram_start(kind)
-        fixed, relations = parallelogram_fixed(kind=kind), parallelogram_relations()
+        target, start = subfamily_target(target, kind, flip), parallelogram_start(kind)
+        fixed, relations = parallelogram_fixed(kind=kind), parallelogram_relations(kind=kind)
     res, failed = _track(m, target, seed, gamma=False, options=options, start=start)
     real_target = CONJUGATE_ROOTS and np.all(np.imag(target) == 0)  # then conjugates of roots are roots
     if 0 < failed <= EXTENDED_MAX_FAILED:  # the failed paths again, every step in double-double (dgp.taut_extended)
@@ -563,7 +564,7 @@ def _solve_taut_set(robot, rho, cables, seed: int = 0, options=None, exclude: bo
     Xr = _real_newton_polish(fam, Xr, target)
 
     def back(Y):  # roots in the subfamily's platform frame -> the normalized problem's
-        return Y if frame is None else frame.roots_back(Y, m, cb, L)
+        return flip_roots_back(Y, m) if flip else Y if frame is None else frame.roots_back(Y, m, cb, L)
 
     Xr = back(Xr)
     tol = TENSION_RTOL * robot.load

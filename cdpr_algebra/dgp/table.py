@@ -58,7 +58,9 @@ def dgp_table(result: DGPResult, n: int) -> str:
                          + (", the robot read in decimal" if s.collinear_anchors != BINARY else ""))
         if s.parallelogram is not None:
             a, b, c, d = s.parallelogram
-            where = "the anchors' centred on G" if s.parallelogram_kind == "centred" else "G off the anchors' centre"
+            where = {"centred": "the anchors' centred on G", "off_centre": "G off the anchors' centre",
+                     "squares": "both squares, G off the plate's axis",
+                     "squares_axis": "both squares, G on the plate's axis"}.get(s.parallelogram_kind, "")
             lines.append(f"  {list(s.taut)}: exit points and platform anchors two parallelograms (diagonals {a}-{c} and "
                          f"{b}-{d}), {where}: tracked from that subfamily's generic set ({s.generic_count} paths)")
     for s in result.subproblems:
