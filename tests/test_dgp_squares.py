@@ -89,7 +89,7 @@ def test_the_square_robot_is_complete_and_has_the_interval_searchs_equilibria():
     assert cmp.status == "agree" and cmp.homotopy == cmp.interval == sub.admissible >= 1, cmp.to_dict()
 
 
-@pytest.mark.parametrize("seed", [0, 2])
+@pytest.mark.parametrize("seed", [2])  # one robot: that route takes 30-50 s (2-4 failed paths)
 def test_the_off_centre_route_finds_the_same_168_roots(seed, monkeypatch):
     """The route from the off-centre parallelograms' set (184 paths) ends 168 of them at regular roots, the squares
     route's 168 certified ones, and the others at infinity or failed (4 failed here: the reason for the subfamily)."""
