@@ -8,7 +8,9 @@ Re-runnable, NOT a ``derive_*.py`` (monodromy and the trace test are randomized 
 ``--kind off_centre`` (G not at the centre of the platform anchors' parallelogram, g' free): the same method and
 relations without g' = 0 (:mod:`cdpr_algebra.dgp.parallelogram`); the seed point's G is (0.03, -0.02, -0.15) plus
 the noise.  ``--kind squares`` (two squares, G off their centre): the seed point's squares are those of
-:func:`square_robot`.  Their records are in the files' ``meta``.  The rest of this text is about the centred kind.
+:func:`square_robot`.  ``--kind squares_axis`` (G on the plate's axis): its seed root is moved from the squares set
+(:func:`seed_from_squares`); its trace test did not decide (README), so no set is stored.  Their records are in the
+files' ``meta``.  The rest of this text is about the centred kind.
 
 Why.  When the four exit points A_1 .. A_4 of a taut set are a parallelogram (A_1 + A_3 = A_2 + A_4) and the four
 platform anchors are a parallelogram centred on the centre of mass (b'_1 + b'_3 = b'_2 + b'_4 = 2 g'), in the
@@ -81,10 +83,10 @@ def rectangle_robot(m: int = M, kind: str = "centred") -> np.ndarray:
     """Parameters of a unit-size robot in the subfamily: exit points (+-0.5, +-0.35, 0) of a rectangle, a plate
     (+-0.12, +-0.08, 0) with G at its centre (``OFF_CENTRE_G`` for the off-centre kind), in the same order, cables of
     length 0.7, load 1 along -z."""
-    A = np.array([[-0.5, -0.35, 0.0], [0.5, -0.35, 0.0], [0.5, 0.35, 0.0], [-0.5, 0.35, 0.0]])
-    b = np.array([[-0.12, -0.08, 0.0], [0.12, -0.08, 0.0], [0.12, 0.08, 0.0], [-0.12, 0.08, 0.0]])
     if kind.startswith("squares"):
         return square_robot(m, kind)
+    A = np.array([[-0.5, -0.35, 0.0], [0.5, -0.35, 0.0], [0.5, 0.35, 0.0], [-0.5, 0.35, 0.0]])
+    b = np.array([[-0.12, -0.08, 0.0], [0.12, -0.08, 0.0], [0.12, 0.08, 0.0], [-0.12, 0.08, 0.0]])
     g = np.zeros(3) if kind == "centred" else np.array(OFF_CENTRE_G)
     return np.concatenate([A.ravel(), np.full(m, 0.7 ** 2), b.ravel(), g, [0.0, 0.0, -1.0]])
 

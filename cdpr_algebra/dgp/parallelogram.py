@@ -2,7 +2,7 @@
 
 When the exit points of a taut set of four cables are a parallelogram (A_a + A_c = A_b + A_d) and its platform anchors
 are a parallelogram with the same diagonals (b'_a + b'_c = b'_b + b'_d), the taut system
-(:func:`cdpr_algebra.model.taut_equations.taut_family`) is a special member of its family, of one of two subfamilies
+(:func:`cdpr_algebra.model.taut_equations.taut_family`) is a special member of its family, in one of these subfamilies
 (``KINDS``):
 
 * ``"centred"``: the anchors' parallelogram centred on the centre of mass (b'_a + b'_c = 2 g'): only 152 of the 216
@@ -28,13 +28,13 @@ are a parallelogram with the same diagonals (b'_a + b'_c = b'_b + b'_d), the tau
   set of 164 (monodromy with no target count; PHCpack's 164 on another member, matched both ways) did not pass the
   trace test (undecided, README), so such robots take the squares set until a certified one is stored.
 
-In the normalized problem centred on the diagonals' midpoints (:func:`centred_frame`), both subfamilies are linear:
-A_1 + A_3 = A_2 + A_4 = 0, b'_1 + b'_3 = b'_2 + b'_4 = 0 (:func:`parallelogram_relations`), and for the centred kind
-g' = 0 too (:func:`fixed_parameters`); the cables ordered so that 1, 3 and 2, 4 are the diagonals
-(:func:`parallelogram_order`).  Each has its own generic solution set (:func:`parallelogram_path`, made and certified
-by a trace test inside the subfamily, ``derivations/solve_generic_parallelogram.py [--kind off_centre]``), the start
-of such taut sets; every route the DGP takes stays on complex lines through two members of the subfamily, or perturbs
-it inside the subfamily.
+In the normalized problem centred on the diagonals' midpoints (:func:`centred_frame`), every subfamily is linear:
+A_1 + A_3 = A_2 + A_4 = 0, b'_1 + b'_3 = b'_2 + b'_4 = 0 (:func:`parallelogram_relations`), for the centred kind
+g' = 0 too, for the squares the relations and values above (:func:`fixed_parameters`); the cables ordered so that
+1, 3 and 2, 4 are the diagonals (:func:`parallelogram_order`).  Each shipped kind has its own generic solution set
+(:func:`parallelogram_path`, made and certified by a trace test inside the subfamily,
+``derivations/solve_generic_parallelogram.py --kind KIND``), the start of such taut sets; every route the DGP takes
+stays on complex lines through two members of the subfamily, or perturbs it inside the subfamily.
 
 Which robots: the parallelograms exact in the robot's doubles (rational arithmetic), as the interval certificates
 read them.  A robot only near such one (seed 002's {1, 3, 5, 7}) is tracked from the generic set as before.
@@ -148,14 +148,13 @@ def parallelogram_kind(robot, order) -> str:
     anchors' in a plane z' = const, G on the plate's axis (the normal through its centre); ``"squares"`` with G
     elsewhere (each when its stored set exists); else ``"off_centre"``."""
     a, _, c, _ = order
-    B = [_exact(robot.platform[i]) for i in (a, c)]
-    if all(B[0][k] + B[1][k] == 2 * g for k, g in enumerate(_exact(robot.com))):
+    mid = [(x + y) / 2 for x, y in zip(_exact(robot.platform[a]), _exact(robot.platform[c]))]
+    g = _exact(robot.com)
+    if mid == g:
         return "centred"
     if _square(*_arms(robot.base, order), _exact(robot.load_direction)) and _square(*_arms(robot.platform, order),
                                                                                     [0, 0, 1]):
-        mid = [(x + y) / 2 for x, y in zip(*B)]
-        axis = all(g == x for g, x in zip(_exact(robot.com)[:2], mid[:2]))
-        for kind in (("squares_axis",) if axis else ()) + ("squares",):
+        for kind in (("squares_axis",) if mid[:2] == g[:2] else ()) + ("squares",):
             if parallelogram_path(kind).exists():
                 return kind
     return "off_centre"
@@ -191,7 +190,8 @@ def parallelogram_order(robot, cables) -> tuple | None:
         if all(A[a][k] + A[c][k] == A[b][k] + A[d][k] and B[a][k] + B[c][k] == B[b][k] + B[d][k] for k in range(3)):
             order = a, b, c, d
             kind = parallelogram_kind(robot, order)
-            if kind.startswith("squares") and _turns(*_arms(robot.base, order), [-x for x in _exact(robot.load_direction)]) < 0:
+            up = [-x for x in _exact(robot.load_direction)]
+            if kind.startswith("squares") and _turns(*_arms(robot.base, order), up) < 0:
                 order = a, d, c, b  # counter-clockwise about the upward normal
             return order if parallelogram_path(kind).exists() else None
     return None
